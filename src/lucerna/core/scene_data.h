@@ -1,0 +1,204 @@
+// Lucerna: the render-ready scene as plain data (spans and indices, no pointers between
+// objects), shared by the CPU and CUDA backends. The host builder (scene/builder.*) fills it
+// from a parsed pbrt-v4 scene; one upload per array moves it to the GPU.
+#pragma once
+
+#include "lucerna/spectrum/spectrum.h"
+#include "lucerna/util/vecmath.h"
+
+namespace lu {
+
+constexpr uint32_t NoIndex = 0xffffffffu;
+
+template <typename T>
+struct Span {
+    const T *ptr = nullptr;
+    uint32_t size = 0;
+    LU_HD const T &operator[](uint32_t i) const { return ptr[i]; }
+    LU_HD bool empty() const { return size == 0; }
+};
+
+// ---- Images and textures ----
+
+enum class WrapMode : uint8_t { Repeat, Clamp, Black };
+
+// An image of float texels (channels interleaved), stored in SceneView::texels from `offset`.
+struct ImageData {
+    uint32_t width = 0, height = 0, channels = 0;
+    uint64_t offset = 0;
+    WrapMode wrap = WrapMode::Repeat;
+};
+
+// uv mapping: (s, t) = (su * u + du, sv * v + dv), as pbrt-v4's UVMapping.
+struct UVMapping {
+    Float su = 1, sv = 1, du = 0, dv = 0;
+};
+
+enum class TextureKind : uint8_t { Constant, ImageMap, Checkerboard };
+
+// Float textures (roughness, ...). ImageMap reads channel 0 (or the average of RGB).
+struct FloatTexture {
+    TextureKind kind = TextureKind::Constant;
+    Float value = 0;            // Constant
+    Float tex1 = 1, tex2 = 0;   // Checkerboard values
+    uint32_t image = NoIndex;   // ImageMap
+    Float scale = 1;            // ImageMap multiplier
+    bool invert = false;
+    UVMapping mapping;
+};
+
+// Spectrum textures. Constant holds a Spectrum; ImageMap holds RGB texels converted per lookup
+// (RGBAlbedo for reflectances, RGBUnbounded otherwise: `unbounded`).
+struct SpectrumTexture {
+    TextureKind kind = TextureKind::Constant;
+    Spectrum value;                    // Constant
+    Spectrum tex1, tex2;               // Checkerboard (constant spectra)
+    uint32_t image = NoIndex;          // ImageMap
+    Float scale = 1;
+    bool invert = false;
+    bool unbounded = false;
+    UVMapping mapping;
+};
+
+// ---- Materials ----
+
+enum class MaterialKind : uint8_t { Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface };
+
+struct Material {
+    MaterialKind kind = MaterialKind::Diffuse;
+    SpectrumTexture reflectance;          // diffuse, coateddiffuse, conductor when useReflectance
+    SpectrumTexture conductorEta, conductorK;
+    bool useReflectance = false;          // conductor given "reflectance" instead of eta/k
+    FloatTexture uRoughness, vRoughness;  // conductor, dielectric, coateddiffuse (interface roughness)
+    bool remapRoughness = true;
+    Spectrum eta = Spectrum::Const(1.5f); // dielectric, thindielectric, coateddiffuse interface;
+                                          // a non-constant eta makes the dielectric dispersive
+    // coateddiffuse (pbrt-v4 defaults)
+    FloatTexture thickness;               // default 0.01
+    FloatTexture g;                       // default 0
+    SpectrumTexture albedo;               // default 0
+    int maxDepth = 10, nSamples = 1;
+};
+
+// ---- Shapes ----
+
+enum class ShapeKind : uint8_t { Triangles, Sphere, Disk };
+
+// A triangle mesh with world-space vertices. Triangle t of the mesh uses
+// indices[firstIndex + 3t .. +2], relative to firstVertex.
+struct TriangleMesh {
+    uint32_t firstVertex = 0, vertexCount = 0;
+    uint32_t firstIndex = 0, triangleCount = 0;
+    uint32_t normalOffset = NoIndex;  // per-vertex shading normals (world space) at normals[normalOffset + i]
+    uint32_t uvOffset = NoIndex;      // per-vertex uv at uvs[uvOffset + i]
+    bool flipNormals = false;         // ReverseOrientation XOR transform swaps handedness
+};
+
+// pbrt-v4 sphere (full: zmin/zmax/phimax unsupported) in object space, radius r.
+struct Sphere {
+    Transform renderFromObject;
+    Float radius = 1;
+    bool flipNormals = false;
+};
+
+// pbrt-v4 disk at z = height in object space, facing +z.
+struct Disk {
+    Transform renderFromObject;
+    Float height = 0, radius = 1, innerRadius = 0;
+    bool flipNormals = false;
+};
+
+// One entry per shape in the scene; its index is the geometry id used by every backend.
+struct Shape {
+    ShapeKind kind = ShapeKind::Triangles;
+    uint32_t index = 0;            // into triangleMeshes, spheres or disks
+    uint32_t material = NoIndex;   // NoIndex: interface (no surface, rays pass through)
+    uint32_t areaLight = NoIndex;  // first light index; primitive i of the shape has light areaLight + i
+    uint32_t primitiveCount = 1;   // triangles of a mesh, 1 for analytic shapes
+};
+
+// ---- Lights ----
+
+enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite };
+
+struct Light {
+    LightKind kind = LightKind::Point;
+    Spectrum spectrum;           // I (point, spot), L (distant, area, uniform infinite); image: unused
+    Float scale = 1;             // includes pbrt-v4's 1/SpectrumToPhotometric and `power` normalizations
+    Transform renderFromLight;   // point, spot, image infinite
+    Vec3f position;              // point, spot (render space)
+    Vec3f direction;             // distant: direction the light travels *from* (wLight, towards the light)
+    Float cosFalloffStart = 1, cosFalloffEnd = 0;  // spot
+    uint32_t shape = NoIndex, primitive = 0;       // area light: the emitting shape and primitive
+    bool twoSided = false;
+    uint32_t image = NoIndex;    // image infinite: RGB image (illuminant) in texels
+    uint32_t distribution = NoIndex;  // image infinite: index into SceneView::distributions2D
+    Vec3f sceneCenter;           // distant / infinite: bounding sphere of the scene
+    Float sceneRadius = 0;
+};
+
+// Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:
+// marginal cdf (ny+1) at `offset`, conditional cdfs ((nx+1) * ny) after it, and function values.
+struct Distribution2D {
+    uint32_t nx = 0, ny = 0;
+    uint64_t offset = 0;   // start in distData
+    Float integral = 0;
+};
+
+// ---- Camera and film ----
+
+struct CameraData {
+    Transform renderFromCamera;   // camera space is left-handed, looking down +z (pbrt-v4)
+    Transform cameraFromRaster;
+    Float lensRadius = 0, focalDistance = 1e6f;
+    int width = 0, height = 0;    // full film resolution (pixels)
+};
+
+enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell };
+
+struct FilterData {
+    FilterKind kind = FilterKind::Gaussian;
+    Float radiusX = 1.5f, radiusY = 1.5f;
+    Float sigma = 0.5f;          // gaussian
+    Float B = 1.f / 3, C = 1.f / 3;  // mitchell
+    uint32_t distribution = NoIndex;  // tabulated filter importance distribution (Distribution2D index)
+};
+
+struct FilmData {
+    int width = 0, height = 0;
+    Float imagingRatio = 1;      // exposure time * iso / 100
+    Float xyzToOutput[3][3];     // XYZ -> linear sRGB (with white balance folded in, if any)
+    Float maxComponentValue = Infinity;
+};
+
+// ---- The whole scene, as spans over one upload per array ----
+
+struct SceneView {
+    Span<Vec3f> positions, normals;
+    Span<Vec2f> uvs;
+    Span<uint32_t> indices;
+    Span<TriangleMesh> triangleMeshes;
+    Span<Sphere> spheres;
+    Span<Disk> disks;
+    Span<Shape> shapes;
+    Span<Material> materials;
+    Span<Light> lights;
+    Span<Float> lightCdf;           // light selection CDF (size lights.size + 1), proportional to power
+    Span<uint32_t> infiniteLights;  // indices of lights with no position (for escaped rays)
+    Span<ImageData> images;
+    Span<Float> texels;
+    Span<Distribution2D> distributions2D;
+    Span<Float> distData;
+    SpectrumTables spectra;
+    // RGB -> sigmoid coefficient table (Jakob & Hanika 2019) for the scene color space (sRGB):
+    // res^3 * 3 entries per maximal component (3 of them), zNodes of size res.
+    Span<Float> rgbToSpecCoeffs, rgbToSpecZNodes;
+    uint32_t rgbToSpecRes = 0;
+    uint32_t illuminantTable = 0;   // the color space's standard illuminant (D65), in spectra
+    CameraData camera;
+    FilmData film;
+    FilterData filter;
+    Bounds3f bounds;
+};
+
+}  // namespace lu

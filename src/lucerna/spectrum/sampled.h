@@ -1,0 +1,90 @@
+// Lucerna: point-sampled spectra carried along a path (hero wavelengths), after pbrt-v4's
+// SampledSpectrum / SampledWavelengths: 4 wavelengths per path, sampled by visible importance.
+#pragma once
+
+#include "lucerna/util/common.h"
+
+namespace lu {
+
+constexpr int NSpectrumSamples = 4;
+constexpr Float LambdaMin = 360, LambdaMax = 830;
+
+struct SampledSpectrum {
+    Float v[NSpectrumSamples];
+    LU_HD SampledSpectrum() { for (int i = 0; i < NSpectrumSamples; ++i) v[i] = 0; }
+    LU_HD explicit SampledSpectrum(Float c) { for (int i = 0; i < NSpectrumSamples; ++i) v[i] = c; }
+    LU_HD Float operator[](int i) const { return v[i]; }
+    LU_HD Float &operator[](int i) { return v[i]; }
+#define LU_SS_OP(op)                                                                        \
+    LU_HD SampledSpectrum operator op(const SampledSpectrum &b) const {                     \
+        SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = v[i] op b.v[i]; return r; } \
+    LU_HD SampledSpectrum &operator op##=(const SampledSpectrum &b) {                        \
+        for (int i = 0; i < NSpectrumSamples; ++i) v[i] op## = b.v[i]; return *this; }        \
+    LU_HD SampledSpectrum operator op(Float s) const {                                       \
+        SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = v[i] op s; return r; } \
+    LU_HD SampledSpectrum &operator op##=(Float s) {                                          \
+        for (int i = 0; i < NSpectrumSamples; ++i) v[i] op## = s; return *this; }
+    LU_SS_OP(+) LU_SS_OP(-) LU_SS_OP(*) LU_SS_OP(/)
+#undef LU_SS_OP
+    LU_HD bool IsBlack() const { for (int i = 0; i < NSpectrumSamples; ++i) if (v[i] != 0) return false; return true; }
+    LU_HD explicit operator bool() const { return !IsBlack(); }
+    LU_HD Float MaxValue() const { Float m = v[0]; for (int i = 1; i < NSpectrumSamples; ++i) m = Max(m, v[i]); return m; }
+    LU_HD Float MinValue() const { Float m = v[0]; for (int i = 1; i < NSpectrumSamples; ++i) m = Min(m, v[i]); return m; }
+    LU_HD Float Average() const { Float s = 0; for (int i = 0; i < NSpectrumSamples; ++i) s += v[i]; return s / NSpectrumSamples; }
+    LU_HD bool IsFinite() const { for (int i = 0; i < NSpectrumSamples; ++i) if (!std::isfinite(v[i])) return false; return true; }
+};
+
+LU_INLINE SampledSpectrum operator*(Float s, const SampledSpectrum &a) { return a * s; }
+LU_INLINE SampledSpectrum SafeDiv(const SampledSpectrum &a, const SampledSpectrum &b) {
+    SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = b.v[i] != 0 ? a.v[i] / b.v[i] : 0; return r;
+}
+LU_INLINE SampledSpectrum Sqrt(const SampledSpectrum &a) {
+    SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = SafeSqrt(a.v[i]); return r;
+}
+LU_INLINE SampledSpectrum Exp(const SampledSpectrum &a) {
+    SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = std::exp(a.v[i]); return r;
+}
+LU_INLINE SampledSpectrum ClampZero(const SampledSpectrum &a) {
+    SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = Max(Float(0), a.v[i]); return r;
+}
+
+// Visible-importance wavelength sampling, pdf proportional to 1/cosh^2(0.0072 (lambda - 538)),
+// restricted to [360, 830] nm (pbrt-v4's SampleVisibleWavelengths).
+LU_INLINE Float VisibleWavelengthsPDF(Float lambda) {
+    if (lambda < 360 || lambda > 830) return 0;
+    Float c = std::cosh(0.0072f * (lambda - 538));
+    return 0.0039398042f / (c * c);
+}
+LU_INLINE Float SampleVisibleWavelength(Float u) {
+    return 538 - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
+}
+
+struct SampledWavelengths {
+    Float lambda[NSpectrumSamples];
+    Float pdf[NSpectrumSamples];
+
+    // Stratified: the first wavelength from u, the others offset by 1/N in the primary sample.
+    LU_HD static SampledWavelengths SampleVisible(Float u) {
+        SampledWavelengths w;
+        for (int i = 0; i < NSpectrumSamples; ++i) {
+            Float up = u + Float(i) / NSpectrumSamples;
+            if (up > 1) up -= 1;
+            w.lambda[i] = SampleVisibleWavelength(up);
+            w.pdf[i] = VisibleWavelengthsPDF(w.lambda[i]);
+        }
+        return w;
+    }
+    LU_HD SampledSpectrum PDF() const { SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = pdf[i]; return r; }
+    // Wavelength-dependent refraction (dispersion): keep only the hero wavelength.
+    LU_HD void TerminateSecondary() {
+        if (SecondaryTerminated()) return;
+        for (int i = 1; i < NSpectrumSamples; ++i) pdf[i] = 0;
+        pdf[0] /= NSpectrumSamples;
+    }
+    LU_HD bool SecondaryTerminated() const {
+        for (int i = 1; i < NSpectrumSamples; ++i) if (pdf[i] != 0) return false;
+        return true;
+    }
+};
+
+}  // namespace lu

@@ -1,0 +1,78 @@
+// Lucerna: spectra as plain data for shared (host/device) code, and their evaluation at sampled
+// wavelengths. RGB values are upsampled on the host with Jakob & Hanika's sigmoid polynomials
+// (as pbrt-v4 does); the device only evaluates the resulting coefficients.
+#pragma once
+
+#include "lucerna/spectrum/sampled.h"
+
+namespace lu {
+
+// Tabulated spectra are stored densely at 1 nm from 360 to 830 nm (471 values).
+constexpr int TabulatedSpectrumSize = 471;
+
+enum class SpectrumKind : uint8_t {
+    Constant,       // value = scale
+    RGBAlbedo,      // value = sigmoid(poly(c, lambda)), in [0,1]
+    RGBUnbounded,   // value = scale * sigmoid(poly(c, lambda))
+    RGBIlluminant,  // value = scale * sigmoid(poly(c, lambda)) * table[lambda] (table: the color space illuminant)
+    Tabulated,      // value = scale * table[lambda]
+    Blackbody,      // value = scale * Planck(lambda, T = c[0]); scale normalizes the peak to 1
+};
+
+struct Spectrum {
+    SpectrumKind kind = SpectrumKind::Constant;
+    Float scale = 0;
+    Float c[3] = {0, 0, 0};   // sigmoid polynomial coefficients (c0 l^2 + c1 l + c2), or T for blackbody
+    uint32_t table = 0;       // index of a tabulated spectrum in SpectrumTables::data (units of 471 floats)
+
+    LU_HD static Spectrum Const(Float v) { Spectrum s; s.kind = SpectrumKind::Constant; s.scale = v; return s; }
+    LU_HD bool IsConstant() const { return kind == SpectrumKind::Constant; }
+};
+
+// Device-visible spectral tables; every pointer is into one upload.
+struct SpectrumTables {
+    const Float *data = nullptr;  // tabulated spectra, TabulatedSpectrumSize floats each
+    uint32_t count = 0;
+};
+
+LU_INLINE Float SigmoidPolynomial(const Float c[3], Float lambda) {
+    Float x = (c[0] * lambda + c[1]) * lambda + c[2];
+    if (std::isinf(x)) return x > 0 ? 1 : 0;
+    return 0.5f + x / (2 * std::sqrt(1 + x * x));
+}
+
+LU_INLINE Float BlackbodyRadiance(Float lambdaNm, Float T) {
+    if (T <= 0) return 0;
+    const double c = 299792458., h = 6.62606957e-34, kb = 1.3806488e-23;
+    double l = lambdaNm * 1e-9;
+    return Float((2 * h * c * c) / (l * l * l * l * l * (std::exp((h * c) / (l * kb * T)) - 1)));
+}
+
+LU_INLINE Float LookupTabulated(const Float *t, Float lambda) {
+    Float x = lambda - LambdaMin;
+    if (!(x >= 0) || x > TabulatedSpectrumSize - 1) return 0;
+    int i = Min(int(x), TabulatedSpectrumSize - 2);
+    Float f = x - i;
+    return (1 - f) * t[i] + f * t[i + 1];
+}
+
+LU_INLINE Float EvalSpectrum(const Spectrum &s, Float lambda, const SpectrumTables &tab) {
+    switch (s.kind) {
+    case SpectrumKind::Constant: return s.scale;
+    case SpectrumKind::RGBAlbedo: return SigmoidPolynomial(s.c, lambda);
+    case SpectrumKind::RGBUnbounded: return s.scale * SigmoidPolynomial(s.c, lambda);
+    case SpectrumKind::RGBIlluminant:
+        return s.scale * SigmoidPolynomial(s.c, lambda) * LookupTabulated(tab.data + size_t(s.table) * TabulatedSpectrumSize, lambda);
+    case SpectrumKind::Tabulated: return s.scale * LookupTabulated(tab.data + size_t(s.table) * TabulatedSpectrumSize, lambda);
+    case SpectrumKind::Blackbody: return s.scale * BlackbodyRadiance(lambda, s.c[0]);
+    }
+    return 0;
+}
+
+LU_INLINE SampledSpectrum SampleSpectrum(const Spectrum &s, const SampledWavelengths &w, const SpectrumTables &tab) {
+    SampledSpectrum r;
+    for (int i = 0; i < NSpectrumSamples; ++i) r[i] = EvalSpectrum(s, w.lambda[i], tab);
+    return r;
+}
+
+}  // namespace lu
