@@ -1,0 +1,143 @@
+// Lucerna scene reader: the parsed pbrt-v4 scene, before interpretation (host only).
+// The parser (parser.cpp) fills a SceneDescription with entities that keep their parameters
+// and source locations; the builder (builder.cpp) interprets them into SceneData.
+// Modeled on pbrt-v4's BasicScene entities.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lucerna/scene/error.h"
+#include "lucerna/util/vecmath.h"
+
+namespace lu {
+
+// One "type name" [values] parameter as written in the file.
+struct ParsedParameter {
+    std::string type;   // as written: "float", "integer", "point3", "rgb", "spectrum", "texture", ...
+    std::string name;
+    FileLoc loc;
+    std::vector<double> numbers;      // numeric values (also blackbody temperature, spectrum pairs)
+    std::vector<std::string> strings; // string, texture, named spectrum or spectrum file name
+    std::vector<bool> bools;
+    mutable bool lookedUp = false;    // set by every Get*; unread parameters are reported
+};
+
+// Typed access to an entity's parameters. Every getter marks the parameter used; a parameter of
+// the right name but wrong type, or with the wrong number of values, is a SceneError at its loc.
+class ParameterDictionary {
+  public:
+    ParameterDictionary() = default;
+    explicit ParameterDictionary(std::vector<ParsedParameter> params) : params_(std::move(params)) {}
+
+    double GetOneFloat(const std::string &name, double def) const;
+    int GetOneInt(const std::string &name, int def) const;
+    bool GetOneBool(const std::string &name, bool def) const;
+    std::string GetOneString(const std::string &name, const std::string &def) const;
+    std::optional<Vec3f> GetOnePoint3f(const std::string &name) const;
+    std::optional<Vec3f> GetOneVector3f(const std::string &name) const;
+
+    std::vector<double> GetFloatArray(const std::string &name) const;
+    std::vector<int> GetIntArray(const std::string &name) const;
+    std::vector<std::string> GetStringArray(const std::string &name) const;
+    std::vector<Vec3f> GetPoint3fArray(const std::string &name) const;   // "point3"/"point"
+    std::vector<Vec3f> GetNormal3fArray(const std::string &name) const;  // "normal"/"normal3"
+    std::vector<Vec3f> GetVector3fArray(const std::string &name) const;
+    std::vector<Vec2f> GetPoint2fArray(const std::string &name) const;   // "point2"
+
+    // The raw parameter (any type) or nullptr; marks it used. Spectra ("rgb", "spectrum",
+    // "blackbody") and "texture" references are interpreted by the builder from this.
+    const ParsedParameter *Find(const std::string &name) const;
+    // The type of a parameter if present ("" otherwise), without marking it used.
+    std::string TypeOf(const std::string &name) const;
+    bool Has(const std::string &name) const { return !TypeOf(name).empty(); }
+
+    // Warnings "parameter \"type name\" is not used by NAME" for every unread parameter.
+    void ReportUnused(Diagnostics &diag, const std::string &owner) const;
+
+    const std::vector<ParsedParameter> &All() const { return params_; }
+
+  private:
+    const ParsedParameter *Lookup(const std::string &name, std::initializer_list<const char *> types,
+                                  const char *expected) const;
+    std::vector<ParsedParameter> params_;
+};
+
+// A directive with a type name and parameters, e.g. Camera "perspective" ...
+struct SceneEntity {
+    std::string name;           // "perspective", "diffuse", "trianglemesh", ...
+    FileLoc loc;
+    ParameterDictionary params;
+};
+
+struct TransformedEntity : SceneEntity {
+    Transform renderFromObject;
+};
+
+struct CameraEntity : SceneEntity {
+    Transform worldFromCamera;  // inverse of the CTM at the Camera directive
+    // Lucerna renders in world space: renderFromWorld is the identity.
+};
+
+struct ShapeEntity : TransformedEntity {
+    bool reverseOrientation = false;
+    // Material: index into SceneDescription::materials, or a named material.
+    int materialIndex = -1;
+    std::string materialName;           // NamedMaterial in effect ("" if materialIndex used)
+    int areaLightIndex = -1;            // index into SceneDescription::areaLights, -1 none
+    std::string insideMedium, outsideMedium;  // recorded to report media as unsupported
+    std::string baseDirectory;          // directory of the file that declared the shape (for plymesh)
+};
+
+struct LightEntity : TransformedEntity {
+    std::string outsideMedium;
+};
+
+struct TextureEntity : TransformedEntity {
+    std::string textureName;   // the name given in Texture "name" ...
+    std::string valueType;     // "float" or "spectrum"
+    std::string baseDirectory; // for image file names
+};
+
+struct InstanceDefinition {
+    std::string name;
+    FileLoc loc;
+    std::vector<ShapeEntity> shapes;   // renderFromObject relative to the instance's world
+};
+
+struct InstanceUse {
+    std::string name;
+    FileLoc loc;
+    Transform renderFromInstance;
+};
+
+struct SceneDescription {
+    // Rendering options (pre-WorldBegin); name == "" when absent (defaults apply).
+    CameraEntity camera;
+    SceneEntity film, sampler, integrator, filter, accelerator;
+    std::string colorSpace = "srgb";
+    std::vector<std::pair<std::string, FileLoc>> options;  // Option directives, as written
+
+    // World.
+    std::vector<SceneEntity> materials;                // anonymous Material directives
+    std::map<std::string, SceneEntity> namedMaterials; // MakeNamedMaterial (params include "string type")
+    std::vector<TextureEntity> floatTextures, spectrumTextures;
+    std::vector<LightEntity> lights;
+    std::vector<SceneEntity> areaLights;               // AreaLightSource entities
+    std::vector<ShapeEntity> shapes;
+    std::map<std::string, InstanceDefinition> instanceDefinitions;
+    std::vector<InstanceUse> instances;
+    std::vector<SceneEntity> media;                    // MakeNamedMedium (unsupported)
+    std::string baseDirectory;                         // directory of the main file
+};
+
+// Parses a pbrt-v4 scene file (following Include/Import). Throws SceneError on bad input.
+// Directives outside the supported subset that change the picture are errors; others are
+// recorded in diag as warnings/unsupported.
+SceneDescription ParseSceneFile(const std::string &filename, Diagnostics &diag);
+SceneDescription ParseSceneString(const std::string &text, const std::string &filename, Diagnostics &diag);
+
+}  // namespace lu

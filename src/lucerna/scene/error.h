@@ -1,0 +1,45 @@
+// Lucerna scene reader: source locations and compiler-style diagnostics (host only).
+// Errors print "FILE:LINE:COL: error: MESSAGE" plus the source line and a caret; `lucerna`
+// turns a SceneError into exit code 2.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lu {
+
+// A position in a scene file; line and col are 1-based (0: unknown).
+struct FileLoc {
+    std::shared_ptr<const std::string> file;  // shared by all tokens of one file
+    int line = 0, col = 0;
+    std::string Filename() const { return file ? *file : std::string("<unknown>"); }
+    std::string ToString() const;  // "file:line:col"
+};
+
+// Bad input: thrown by the reader and the scene builder, caught by the CLI (exit 2).
+class SceneError : public std::runtime_error {
+  public:
+    SceneError(FileLoc loc, std::string message);
+    const FileLoc &Loc() const { return loc_; }
+    const std::string &Message() const { return message_; }
+    // The full diagnostic: "file:line:col: error: message\n<source line>\n<caret>".
+    std::string Format() const;
+
+  private:
+    FileLoc loc_;
+    std::string message_;
+};
+
+// Warnings go to stderr as "file:line:col: warning: message" and are also collected so that
+// `lucerna info` and tests can list them.
+struct Diagnostics {
+    std::vector<std::string> warnings;     // formatted lines
+    std::vector<std::string> unsupported;  // names of unsupported features seen (e.g. "Integrator \"sppm\"")
+    bool quiet = false;                    // do not print (tests)
+    void Warning(const FileLoc &loc, const std::string &message);
+    void Unsupported(const FileLoc &loc, const std::string &feature, const std::string &what);
+};
+
+}  // namespace lu
