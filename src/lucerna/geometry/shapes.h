@@ -1,0 +1,217 @@
+// Lucerna: ray-shape intersection and hit reconstruction for triangles, spheres and disks
+// (host and device). Conventions follow pbrt-v4's Triangle/Sphere/Disk: the geometric normal is
+// flipped by ReverseOrientation XOR handedness swap, and for meshes with shading normals it is
+// made to face the shading normal (pbrt-v4's "orientation is authoritative").
+#pragma once
+
+#include "lucerna/core/interaction.h"
+#include "lucerna/core/scene_data.h"
+
+namespace lu {
+
+// Watertight ray-triangle intersection (Woop, Benthin, Wald 2013). On a hit in (0, tMax) returns
+// t and the barycentrics b1, b2 of p1 and p2.
+LU_INLINE bool IntersectTriangle(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, const Ray &ray, Float tMax,
+                                 Float *tOut, Float *b1Out, Float *b2Out) {
+    Vec3f ad = Abs(ray.d);
+    int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    int kx = kz + 1 == 3 ? 0 : kz + 1;
+    int ky = kx + 1 == 3 ? 0 : kx + 1;
+    Vec3f d(ray.d[kx], ray.d[ky], ray.d[kz]);
+    Vec3f a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+    a = Vec3f(a[kx], a[ky], a[kz]);
+    b = Vec3f(b[kx], b[ky], b[kz]);
+    c = Vec3f(c[kx], c[ky], c[kz]);
+    Float sz = 1 / d.z, sx = -d.x * sz, sy = -d.y * sz;
+    a.x += sx * a.z; a.y += sy * a.z;
+    b.x += sx * b.z; b.y += sy * b.z;
+    c.x += sx * c.z; c.y += sy * c.z;
+    Float e0 = b.x * c.y - b.y * c.x;
+    Float e1 = c.x * a.y - c.y * a.x;
+    Float e2 = a.x * b.y - a.y * b.x;
+    if (e0 == 0 || e1 == 0 || e2 == 0) {  // fall back to double on edges
+        e0 = Float(double(b.x) * c.y - double(b.y) * c.x);
+        e1 = Float(double(c.x) * a.y - double(c.y) * a.x);
+        e2 = Float(double(a.x) * b.y - double(a.y) * b.x);
+    }
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
+    Float det = e0 + e1 + e2;
+    if (det == 0) return false;
+    a.z *= sz; b.z *= sz; c.z *= sz;
+    Float tScaled = e0 * a.z + e1 * b.z + e2 * c.z;
+    if (det < 0 && (tScaled >= 0 || tScaled < tMax * det)) return false;
+    if (det > 0 && (tScaled <= 0 || tScaled > tMax * det)) return false;
+    Float invDet = 1 / det;
+    Float t = tScaled * invDet;
+    if (!(t > 0 && t < tMax)) return false;
+    *tOut = t;
+    *b1Out = e1 * invDet;
+    *b2Out = e2 * invDet;
+    return true;
+}
+
+// Sphere of radius r at the object origin. The ray is transformed to object space (t is
+// preserved because the direction is not renormalized). Solved in double for robustness.
+LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit) {
+    Vec3f o = s.renderFromObject.Inverted().ApplyPoint(ray.o);
+    Vec3f d = s.renderFromObject.Inverted().ApplyVector(ray.d);
+    double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    double b = 2 * (double(d.x) * o.x + double(d.y) * o.y + double(d.z) * o.z);
+    // c = |o|^2 - r^2, with the "robust quadratic" discriminant of pbrt-v4 (Hearn-Baker).
+    double c = double(o.x) * o.x + double(o.y) * o.y + double(o.z) * o.z - double(s.radius) * s.radius;
+    double fx = o.x - b / (2 * a) * d.x, fy = o.y - b / (2 * a) * d.y, fz = o.z - b / (2 * a) * d.z;
+    double len = std::sqrt(fx * fx + fy * fy + fz * fz);
+    double disc = 4 * a * (double(s.radius) + len) * (double(s.radius) - len);
+    if (disc < 0) return false;
+    double root = std::sqrt(disc);
+    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
+    // Reject hits too close to the origin relative to the sphere size (self-intersection guard).
+    double eps = 1e-6 * double(s.radius) / std::sqrt(a);
+    double t = t0;
+    if (t <= eps) {
+        t = t1;
+        if (t <= eps) return false;
+    }
+    if (t >= tMax) return false;
+    *tHit = Float(t);
+    return true;
+}
+
+// Disk at z = height in object space, radius and inner radius, full phi.
+LU_INLINE bool IntersectDisk(const Disk &dk, const Ray &ray, Float tMax, Float *tHit) {
+    Vec3f o = dk.renderFromObject.Inverted().ApplyPoint(ray.o);
+    Vec3f d = dk.renderFromObject.Inverted().ApplyVector(ray.d);
+    if (d.z == 0) return false;
+    Float t = (dk.height - o.z) / d.z;
+    if (!(t > 0 && t < tMax)) return false;
+    Float px = o.x + t * d.x, py = o.y + t * d.y;
+    Float r2 = px * px + py * py;
+    if (r2 > dk.radius * dk.radius || r2 < dk.innerRadius * dk.innerRadius) return false;
+    *tHit = t;
+    return true;
+}
+
+// Vertex access for triangle `prim` of mesh m.
+LU_INLINE void TriangleVertices(const SceneView &s, const TriangleMesh &m, uint32_t prim, uint32_t v[3]) {
+    const uint32_t *idx = s.indices.ptr + m.firstIndex + 3 * prim;
+    v[0] = m.firstVertex + idx[0];
+    v[1] = m.firstVertex + idx[1];
+    v[2] = m.firstVertex + idx[2];
+}
+
+// Builds the SurfaceInteraction for a hit found by any backend.
+LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRecord &hit, const Ray &ray) {
+    SurfaceInteraction si;
+    const Shape &shape = s.shapes[hit.shape];
+    si.shape = hit.shape;
+    si.primitive = hit.primitive;
+    si.material = shape.material;
+    si.areaLight = shape.areaLight == NoIndex ? NoIndex : shape.areaLight + hit.primitive;
+    si.wo = -Normalize(ray.d);
+    switch (shape.kind) {
+    case ShapeKind::Triangles: {
+        const TriangleMesh &m = s.triangleMeshes[shape.index];
+        uint32_t v[3];
+        TriangleVertices(s, m, hit.primitive, v);
+        Vec3f p0 = s.positions[v[0]], p1 = s.positions[v[1]], p2 = s.positions[v[2]];
+        Float b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
+        si.p = p0 * b0 + p1 * b1 + p2 * b2;
+        Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
+        if (m.uvOffset != NoIndex) {
+            uv0 = s.uvs[m.uvOffset + (v[0] - m.firstVertex)];
+            uv1 = s.uvs[m.uvOffset + (v[1] - m.firstVertex)];
+            uv2 = s.uvs[m.uvOffset + (v[2] - m.firstVertex)];
+        }
+        si.uv = Vec2f(b0 * uv0.x + b1 * uv1.x + b2 * uv2.x, b0 * uv0.y + b1 * uv1.y + b2 * uv2.y);
+        // dpdu from the uv parameterization (pbrt-v4 Triangle), falling back to an edge.
+        Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+        Float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        Vec3f n = Cross(dp02, dp12);
+        Float nl = Length(n);
+        n = nl > 0 ? n / nl : Vec3f(0, 0, 1);
+        if (std::abs(det) > 1e-9f) si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
+        else si.dpdu = dp02;
+        if (m.flipNormals) n = -n;
+        si.n = n;
+        si.ns = n;
+        if (m.normalOffset != NoIndex) {
+            Vec3f ns = s.normals[m.normalOffset + (v[0] - m.firstVertex)] * b0 +
+                       s.normals[m.normalOffset + (v[1] - m.firstVertex)] * b1 +
+                       s.normals[m.normalOffset + (v[2] - m.firstVertex)] * b2;
+            Float l2 = LengthSquared(ns);
+            if (l2 > 0) {
+                ns = ns / std::sqrt(l2);
+                si.ns = ns;
+                si.n = FaceForward(n, ns);
+            }
+        }
+        break;
+    }
+    case ShapeKind::Sphere: {
+        const Sphere &sp = s.spheres[shape.index];
+        Vec3f pRender = ray(hit.t);
+        Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(pRender);
+        pObj = pObj * (sp.radius / Length(pObj));  // reproject onto the surface
+        si.p = sp.renderFromObject.ApplyPoint(pObj);
+        Float phi = std::atan2(pObj.y, pObj.x);
+        if (phi < 0) phi += 2 * Pi;
+        Float theta = SafeACos(pObj.z / sp.radius);
+        si.uv = Vec2f(phi / (2 * Pi), 1 - theta / Pi);
+        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
+        si.dpdu = sp.renderFromObject.ApplyVector(dpduObj);
+        Vec3f n = Normalize(sp.renderFromObject.ApplyNormal(pObj));
+        if (sp.flipNormals) n = -n;
+        si.n = si.ns = n;
+        break;
+    }
+    case ShapeKind::Disk: {
+        const Disk &dk = s.disks[shape.index];
+        Vec3f pObj = dk.renderFromObject.Inverted().ApplyPoint(ray(hit.t));
+        pObj.z = dk.height;
+        si.p = dk.renderFromObject.ApplyPoint(pObj);
+        Float dist = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+        Float phi = std::atan2(pObj.y, pObj.x);
+        if (phi < 0) phi += 2 * Pi;
+        Float rr = dk.radius - dk.innerRadius;
+        si.uv = Vec2f(phi / (2 * Pi), rr > 0 ? (dk.radius - dist) / rr : 0);
+        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
+        si.dpdu = dk.renderFromObject.ApplyVector(dpduObj);
+        Vec3f n = Normalize(dk.renderFromObject.ApplyNormal(Vec3f(0, 0, 1)));
+        if (dk.flipNormals) n = -n;
+        si.n = si.ns = n;
+        break;
+    }
+    }
+    return si;
+}
+
+// Surface area of one primitive (for light power and area sampling).
+LU_INLINE Float PrimitiveArea(const SceneView &s, const Shape &shape, uint32_t prim) {
+    switch (shape.kind) {
+    case ShapeKind::Triangles: {
+        const TriangleMesh &m = s.triangleMeshes[shape.index];
+        uint32_t v[3];
+        TriangleVertices(s, m, prim, v);
+        return 0.5f * Length(Cross(s.positions[v[1]] - s.positions[v[0]], s.positions[v[2]] - s.positions[v[0]]));
+    }
+    case ShapeKind::Sphere: {
+        // Exact for similarity transforms (uniform scale).
+        const Sphere &sp = s.spheres[shape.index];
+        Float sc = Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
+        return 4 * Pi * Sqr(sp.radius * sc);
+    }
+    case ShapeKind::Disk: {
+        const Disk &dk = s.disks[shape.index];
+        Float sc = Length(dk.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
+        return Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius)) * Sqr(sc);
+    }
+    }
+    return 0;
+}
+
+}  // namespace lu
