@@ -1,0 +1,180 @@
+// Lucerna CPU backend: Embree 3 scene construction and queries.
+#include "lucerna/backend/cpu/embree_scene.h"
+
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "lucerna/geometry/shapes.h"
+
+namespace lu {
+
+namespace {
+
+using UserGeomData = EmbreeUserData;
+
+Bounds3f TransformedBounds(const Transform &t, const Vec3f &lo, const Vec3f &hi) {
+    Bounds3f b;
+    for (int i = 0; i < 8; ++i) {
+        Vec3f c((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+        b.Expand(t.ApplyPoint(c));
+    }
+    return b;
+}
+
+Bounds3f ShapeBounds(const SceneView &s, const Shape &shape) {
+    if (shape.kind == ShapeKind::Sphere) {
+        const Sphere &sp = s.spheres[shape.index];
+        Float r = sp.radius;
+        return TransformedBounds(sp.renderFromObject, Vec3f(-r, -r, -r), Vec3f(r, r, r));
+    }
+    const Disk &d = s.disks[shape.index];
+    return TransformedBounds(d.renderFromObject, Vec3f(-d.radius, -d.radius, d.height), Vec3f(d.radius, d.radius, d.height));
+}
+
+bool IntersectAnalytic(const SceneView &s, const Shape &shape, const Ray &r, Float tMax, Float *t) {
+    if (shape.kind == ShapeKind::Sphere) return IntersectSphere(s.spheres[shape.index], r, tMax, t);
+    return IntersectDisk(s.disks[shape.index], r, tMax, t);
+}
+
+void UserBounds(const RTCBoundsFunctionArguments *args) {
+    auto *d = static_cast<const UserGeomData *>(args->geometryUserPtr);
+    Bounds3f b = ShapeBounds(*d->view, d->view->shapes[d->shape]);
+    // Pad slightly: the bounds must enclose float-rounded hits.
+    Vec3f pad = (b.pMax - b.pMin) * 1e-5f + Vec3f(1e-6f, 1e-6f, 1e-6f);
+    args->bounds_o->lower_x = b.pMin.x - pad.x; args->bounds_o->lower_y = b.pMin.y - pad.y; args->bounds_o->lower_z = b.pMin.z - pad.z;
+    args->bounds_o->upper_x = b.pMax.x + pad.x; args->bounds_o->upper_y = b.pMax.y + pad.y; args->bounds_o->upper_z = b.pMax.z + pad.z;
+}
+
+void UserIntersect(const RTCIntersectFunctionNArguments *args) {
+    auto *d = static_cast<const UserGeomData *>(args->geometryUserPtr);
+    RTCRayHitN *rh = args->rayhit;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        RTCRayN *rn = RTCRayHitN_RayN(rh, args->N);
+        RTCHitN *hn = RTCRayHitN_HitN(rh, args->N);
+        Ray r;
+        r.o = Vec3f(RTCRayN_org_x(rn, args->N, i), RTCRayN_org_y(rn, args->N, i), RTCRayN_org_z(rn, args->N, i));
+        r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
+        Float tfar = RTCRayN_tfar(rn, args->N, i);
+        Float t;
+        if (!IntersectAnalytic(*d->view, d->view->shapes[d->shape], r, tfar, &t)) continue;
+        RTCRayN_tfar(rn, args->N, i) = t;
+        RTCHitN_geomID(hn, args->N, i) = args->geomID;
+        RTCHitN_primID(hn, args->N, i) = 0;
+        RTCHitN_u(hn, args->N, i) = 0;
+        RTCHitN_v(hn, args->N, i) = 0;
+        RTCHitN_Ng_x(hn, args->N, i) = 0;
+        RTCHitN_Ng_y(hn, args->N, i) = 0;
+        RTCHitN_Ng_z(hn, args->N, i) = 1;
+        RTCHitN_instID(hn, args->N, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
+}
+
+void UserOccluded(const RTCOccludedFunctionNArguments *args) {
+    auto *d = static_cast<const UserGeomData *>(args->geometryUserPtr);
+    RTCRayN *rn = args->ray;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        Ray r;
+        r.o = Vec3f(RTCRayN_org_x(rn, args->N, i), RTCRayN_org_y(rn, args->N, i), RTCRayN_org_z(rn, args->N, i));
+        r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
+        Float t;
+        if (IntersectAnalytic(*d->view, d->view->shapes[d->shape], r, RTCRayN_tfar(rn, args->N, i), &t))
+            RTCRayN_tfar(rn, args->N, i) = -Infinity;
+    }
+}
+
+void ErrorCallback(void *, RTCError code, const char *str) {
+    throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + ": " + (str ? str : ""));
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const SceneView &s) : view_(&s) {
+    auto t0 = std::chrono::steady_clock::now();
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw std::runtime_error("cannot create the Embree device");
+    rtcSetDeviceErrorFunction(device_, ErrorCallback, nullptr);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    userData_.reserve(s.shapes.size);
+    for (uint32_t id = 0; id < s.shapes.size; ++id) {
+        const Shape &shape = s.shapes[id];
+        RTCGeometry g;
+        if (shape.kind == ShapeKind::Triangles) {
+            const TriangleMesh &m = s.triangleMeshes[shape.index];
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto *vb = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                    3 * sizeof(float), m.vertexCount));
+            for (uint32_t v = 0; v < m.vertexCount; ++v) {
+                const Vec3f &p = s.positions[m.firstVertex + v];
+                vb[3 * v] = p.x; vb[3 * v + 1] = p.y; vb[3 * v + 2] = p.z;
+            }
+            auto *ib = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                       3 * sizeof(uint32_t), m.triangleCount));
+            std::memcpy(ib, s.indices.ptr + m.firstIndex, size_t(m.triangleCount) * 3 * sizeof(uint32_t));
+        } else {
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+            userData_.push_back(EmbreeUserData{&s, id});
+            rtcSetGeometryUserPrimitiveCount(g, 1);
+            rtcSetGeometryUserData(g, &userData_.back());
+            rtcSetGeometryBoundsFunction(g, UserBounds, nullptr);
+            rtcSetGeometryIntersectFunction(g, UserIntersect);
+            rtcSetGeometryOccludedFunction(g, UserOccluded);
+        }
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(scene_, g, id);
+        rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(scene_);
+    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.o.x; rh.ray.org_y = ray.o.y; rh.ray.org_z = ray.o.z;
+    rh.ray.dir_x = ray.d.x; rh.ray.dir_y = ray.d.y; rh.ray.dir_z = ray.d.z;
+    rh.ray.tnear = 0;
+    rh.ray.tfar = ray.tMax;
+    rh.ray.time = 0;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->t = rh.ray.tfar;
+    hit->shape = rh.hit.geomID;
+    hit->primitive = rh.hit.primID;
+    hit->b1 = rh.hit.u;
+    hit->b2 = rh.hit.v;
+    return true;
+}
+
+bool EmbreeScene::Occluded(const Ray &ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
+    r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
+    r.tnear = 0;
+    r.tfar = ray.tMax;
+    r.time = 0;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0;
+}
+
+}  // namespace lu

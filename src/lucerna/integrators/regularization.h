@@ -1,0 +1,73 @@
+// Lucerna: selective path regularization (Bogolepov, Ulyanov, Turlapov, "On one implementation of
+// path tracing for the GPU", after Kaplanyan & Dachsbacher 2013). At a specular vertex the Dirac
+// lobe around the ideal direction D is replaced by the cone kernel
+//     phi_sigma(D, w) = 1 / (2 pi (1 - cos sigma))  if angle(D, w) < sigma, else 0,
+// with cos sigma = d / sqrt(d^2 + r_N^2) for a light point at distance d, and sigma = sigma_N for
+// lights at infinity; r_N = r0 N^-lambda, sigma_N = sigma0 N^-lambda (N = pass index, from 1).
+// MIS (power heuristic) between this biased explicit technique and the unbiased implicit one uses
+// p_impl = phi_sigma and p_expl = the light sampler's pdf, both in solid angle at the specular
+// vertex (the ratio is the same in the area measure at the light point: both convert with
+// cos theta_z / d^2). See ../shared/METHOD.md.
+#pragma once
+
+#include "lucerna/util/vecmath.h"
+
+namespace lu {
+
+struct RegularizationParams {
+    bool enabled = false;
+    Float radius = 0;    // r_N for this pass (world units)
+    Float angle = 0;     // sigma_N for this pass (radians), lights at infinity
+};
+
+// Per-pass parameters: r_N = r0 * N^-lambda, sigma_N = sigma0 * N^-lambda, N >= 1.
+LU_INLINE RegularizationParams RegularizationForPass(bool enabled, Float r0, Float sigma0, Float lambda, uint32_t passIndex) {
+    RegularizationParams p;
+    p.enabled = enabled;
+    Float s = std::pow(Float(passIndex + 1), -lambda);
+    p.radius = r0 * s;
+    p.angle = sigma0 * s;
+    return p;
+}
+
+// cos sigma of the cone that covers a disc of radius r at distance d.
+LU_INLINE Float ConeCosForDisc(Float d, Float r) { return d / std::sqrt(d * d + r * r); }
+
+// The cone kernel's solid-angle density for cos sigma (uniform over the cap). For tiny cones,
+// 1 - cos sigma is computed as r^2 / (d (d + sqrt(d^2 + r^2))) / ... via sin^2 to avoid cancellation.
+LU_INLINE Float ConePdfW(Float oneMinusCos) { return oneMinusCos > 0 ? 1 / (2 * Pi * oneMinusCos) : Infinity; }
+
+// 1 - cos sigma for the disc cone without cancellation: (sqrt(d^2+r^2) - d)/sqrt(d^2+r^2)
+// = r^2 / (sqrt(d^2+r^2) (sqrt(d^2+r^2) + d)).
+LU_INLINE Float OneMinusConeCosForDisc(Float d, Float r) {
+    Float h = std::sqrt(d * d + r * r);
+    return (r * r) / (h * (h + d));
+}
+// 1 - cos(sigma) = 2 sin^2(sigma / 2).
+LU_INLINE Float OneMinusCosAngle(Float sigma) { return 2 * Sqr(std::sin(sigma / 2)); }
+
+// 1 - cos of the angle between unit vectors a and b, accurate for small angles: |a - b|^2 / 2.
+LU_INLINE Float OneMinusCosBetween(const Vec3f &a, const Vec3f &b) { return 0.5f * LengthSquared(a - b); }
+
+// The kernel's cap for a light point at distance d (d = Infinity: angular kernel).
+LU_INLINE Float RegularizedOneMinusCos(const RegularizationParams &rp, Float d) {
+    if (d == Infinity) return OneMinusCosAngle(rp.angle);
+    return OneMinusConeCosForDisc(d, rp.radius);
+}
+
+// MIS weights of the two techniques for the same path (power heuristic, beta = 2). Delta lights
+// have no implicit technique: pdfExplW = Infinity gives the regularized connection weight 1.
+LU_INLINE Float RegularizedExplicitWeight(Float pdfImplW, Float pdfExplW) {
+    if (pdfExplW == Infinity) return 1;
+    Float a = Sqr(pdfExplW), b = Sqr(pdfImplW);
+    if (b == Infinity) return 0;
+    return a + b > 0 ? a / (a + b) : 0;
+}
+LU_INLINE Float RegularizedImplicitWeight(Float pdfImplW, Float pdfExplW) {
+    if (pdfExplW == Infinity) return 0;
+    Float a = Sqr(pdfImplW), b = Sqr(pdfExplW);
+    if (a == Infinity) return 1;
+    return a + b > 0 ? a / (a + b) : 1;
+}
+
+}  // namespace lu
