@@ -2,6 +2,7 @@
 // libpng), host only.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -34,5 +35,15 @@ void WriteEXR(const std::string &filename, const Image &image, const ImageMetada
 void WritePNG(const std::string &filename, const Image &image);
 // Chooses the format by extension (.exr or .png).
 void WriteImage(const std::string &filename, const Image &image, const ImageMetadata &metadata = {});
+
+// ---- Helpers (added with the image module) ----
+// A width x height image with `channels` channels, every value `fill`.
+Image MakeImage(int width, int height, int channels, float fill = 0);
+// Number of NaN or infinite values over all pixels and channels (the scene builder refuses
+// textures where this is nonzero; ReadImage itself keeps such values as they are).
+size_t CountNonFinite(const Image &image);
+// The sRGB transfer functions (IEC 61966-2-1, piecewise), as pbrt-v4's LinearToSRGB/SRGBToLinear.
+float LinearToSRGB(float linear);
+float SRGBToLinear(float encoded);
 
 }  // namespace lu
