@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs Lucerna's build and test dependencies from Debian 12's packages (idempotent,
+# non-interactive; needs root or sudo). Skips apt entirely when everything is present.
+set -euo pipefail
+PKGS=(build-essential cmake ninja-build pkg-config
+      libembree-dev libtbb-dev libopenexr-dev libpng-dev libcli11-dev libfmt-dev
+      libgtest-dev libgmock-dev libbenchmark-dev
+      python3 python3-matplotlib python3-numpy
+      clang libclang-rt-14-dev)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+echo "setup: dependencies present"

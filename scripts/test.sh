@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Fresh Debian 12: install dependencies, build (Release + CUDA when nvcc exists), run the whole
+# test suite, then the sanitizer build of the unit tests and the fuzzers (bounded time).
+# Environment: FUZZ_SECONDS (default 60 per target), SKIP_SANITIZERS=1, SKIP_FUZZ=1.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh || exit 1
+start=$(date +%s)
+status=0
+step() { echo; echo "==== $* ($(( $(date +%s) - start ))s)"; }
+
+step "build (Release)"
+scripts/build.sh || exit 1
+
+step "unit, integration and reference tests"
+ctest --test-dir build --output-on-failure -j "$(nproc)" --timeout 900 || status=1
+
+if [ "${SKIP_SANITIZERS:-0}" != 1 ]; then
+  step "AddressSanitizer + UBSan build of the unit tests"
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLUCERNA_SANITIZE=ON -DLUCERNA_CUDA=OFF \
+        -DLUCERNA_BENCH=OFF >/dev/null && cmake --build build-asan -j "$(nproc)" || exit 1
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-asan --output-on-failure -j "$(nproc)" --timeout 900 -LE "slow|reference" || status=1
+fi
+
+if [ "${SKIP_FUZZ:-0}" != 1 ] && [ -x fuzz/run.sh ]; then
+  step "fuzzing (${FUZZ_SECONDS:-60}s per target)"
+  fuzz/run.sh "${FUZZ_SECONDS:-60}" || status=1
+fi
+
+step "done: status $status"
+exit $status
