@@ -17,8 +17,12 @@
 
 namespace lu {
 
+// Which unbiased techniques estimate direct light (tests compare them; renders use MIS).
+enum class LightStrategy : uint8_t { MIS, NEEOnly, BSDFOnly };
+
 struct PathSettings {
     int maxDepth = 5;
+    LightStrategy strategy = LightStrategy::MIS;
     RegularizationParams reg;
 };
 
@@ -57,7 +61,8 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
 // Next-event estimation with MIS at a non-specular vertex (pbrt-v4 PathIntegrator::SampleLd).
 template <typename Tracer>
 LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
-                               Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st) {
+                               Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st,
+                               LightStrategy strategy = LightStrategy::MIS) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     Float pmf = 0;
@@ -73,7 +78,7 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
     ++st.rays; ++st.shadowRays;
     if (tracer.Occluded(shadow)) return SampledSpectrum(0);
     Float pL = pmf * ls.pdf;
-    if (ls.isDelta) return f * ls.L / pL;
+    if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pL;
     Float pB = bsdf.PDF(si.wo, ls.wi);
     return f * ls.L * (PowerHeuristic(pL, pB) / pL);
 }
@@ -115,6 +120,13 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     return c;
 }
 
+// MIS weight of an emitter hit by BSDF sampling after a non-specular vertex.
+LU_INLINE Float ImplicitWeight(LightStrategy s, Float pB, Float pL) {
+    if (s == LightStrategy::NEEOnly) return 0;
+    if (s == LightStrategy::BSDFOnly) return 1;
+    return PowerHeuristic(pB, pL);
+}
+
 // Radiance along a camera ray (pbrt-v4 PathIntegrator::Li with regularization).
 template <typename Tracer>
 LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
@@ -141,7 +153,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                     Vec3f wi = Normalize(ray.d);
                     Float pL = LightPMF(scene, li) * PDF_Li(light, scene, MakeLightContext(prev), wi, prev.p + wi, -wi);
                     Float w = specularBounce ? RegularizedImplicitWeight(ConePdfW(RegularizedOneMinusCos(ps.reg, Infinity)), pL)
-                                             : PowerHeuristic(pB, pL);
+                                             : ImplicitWeight(ps.strategy, pB, pL);
                     L += beta * Le * w;
                 }
             }
@@ -162,7 +174,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                         Float d = Distance(prev.p, si.p);
                         w = RegularizedImplicitWeight(ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pL);
                     } else {
-                        w = PowerHeuristic(pB, pL);
+                        w = ImplicitWeight(ps.strategy, pB, pL);
                     }
                     L += beta * Le * w;
                 }
@@ -177,8 +189,8 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         if (depth++ == ps.maxDepth) break;
         bool specular = bsdf.IsSpecular();
         regularizedPrev = false;
-        if (!specular) {
-            SampledSpectrum Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st);
+        if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
+            SampledSpectrum Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
             L += beta * Ld;
         } else if (ps.reg.enabled) {
             SampledSpectrum Lr = beta * SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, st);

@@ -66,6 +66,7 @@ RenderStats RenderCPU(const HostScene &hs, const RenderJob &job, FilmAccumulator
         uint32_t passIndex = film.passes;
         PathSettings ps;
         ps.maxDepth = job.maxDepth;
+        ps.strategy = LightStrategy(job.lightStrategy);
         ps.reg = RegularizationForPass(job.regularize, Float(job.regRadius), Float(job.regAngle), Float(job.regLambda), passIndex);
         tbb::combinable<TileStats> tileStats;
         bool cancelled = false;

@@ -1,0 +1,68 @@
+// Lucerna integrator tests: render a scene given as text or file, with statistics over pixels.
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "lucerna/backend/cpu/cpu_render.h"
+#include "lucerna/image/image.h"
+#include "lucerna/scene/builder.h"
+#include "support/test_support.h"
+
+namespace lu::test {
+
+struct RenderResultForTest {
+    Image image;
+    RenderStats stats;
+};
+
+inline std::unique_ptr<HostScene> LoadSceneText(const std::string &name, const std::string &text, const BuildOptions &opts = {}) {
+    std::string dir = TempDir(name);
+    std::string path = dir + "/scene.pbrt";
+    std::ofstream(path) << text;
+    Diagnostics diag;
+    diag.quiet = true;
+    return LoadScene(path, diag, opts);
+}
+
+inline RenderResultForTest RenderScene(const HostScene &scene, int spp, int maxDepth, uint32_t seed = 0, int threads = 0,
+                                       int strategy = 0, bool regularize = false, double regRadius = 0, double regAngle = 0) {
+    RenderJob job;
+    job.spp = spp;
+    job.maxDepth = maxDepth;
+    job.seed = seed;
+    job.threads = threads;
+    job.progress = false;
+    job.lightStrategy = strategy;
+    job.regularize = regularize;
+    job.regRadius = regRadius;
+    job.regAngle = regAngle;
+    job.samplerName = scene.settings.sampler;
+    FilmAccumulator film;
+    RenderResultForTest r;
+    r.stats = RenderCPU(scene, job, film);
+    r.image = film.Resolve(scene.View().film);
+    return r;
+}
+
+// Mean and standard error of channel c over a pixel rectangle [x0,x1) x [y0,y1).
+struct MeanSE {
+    double mean = 0, se = 0;
+};
+inline MeanSE RegionMean(const Image &img, int c, int x0, int y0, int x1, int y1) {
+    double s = 0, s2 = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            double v = img.At(x, y, c);
+            s += v; s2 += v * v; ++n;
+        }
+    MeanSE m;
+    m.mean = s / n;
+    double var = std::max(0.0, s2 / n - m.mean * m.mean);
+    m.se = std::sqrt(var / std::max(1, n - 1));
+    return m;
+}
+
+}  // namespace lu::test
