@@ -1,0 +1,106 @@
+// Lucerna: the GPU-friendly binary BVH (host build, shared traversal in bvh_traverse.h).
+// Node layout after Aila & Laine 2009 ("Understanding the efficiency of ray traversal on GPUs"):
+// each node stores both children's boxes so one 64-byte fetch decides the traversal order.
+#pragma once
+
+#include <vector>
+
+#include "lucerna/core/scene_data.h"
+
+namespace lu {
+
+// An inner node with two children. A child is either another node (index >= 0 into the node
+// array) or a leaf (index < 0): prim refs ~child .. ~child + count - 1. The root is node 0.
+// Boxes are interleaved for three 16-byte loads: xy0 = child 0 (lo.x, hi.x, lo.y, hi.y),
+// xy1 = child 1 (same), z01 = (lo.z 0, hi.z 0, lo.z 1, hi.z 1).
+struct alignas(64) BVHNode {
+    Float xy0[4] = {0, 0, 0, 0};
+    Float xy1[4] = {0, 0, 0, 0};
+    Float z01[4] = {0, 0, 0, 0};
+    int32_t child[2] = {0, 0};
+    uint32_t count[2] = {0, 0};   // leaf children: number of prim refs (0 = empty slot)
+
+    LU_HD bool IsLeaf(int i) const { return child[i] < 0; }
+    LU_HD uint32_t FirstPrim(int i) const { return uint32_t(~child[i]); }
+    LU_HD Bounds3f ChildBounds(int i) const {
+        const Float *xy = i == 0 ? xy0 : xy1;
+        Bounds3f b;
+        b.pMin = Vec3f(xy[0], xy[2], z01[2 * i]);
+        b.pMax = Vec3f(xy[1], xy[3], z01[2 * i + 1]);
+        return b;
+    }
+    LU_HD void SetChildBounds(int i, const Bounds3f &b) {
+        Float *xy = i == 0 ? xy0 : xy1;
+        xy[0] = b.pMin.x; xy[1] = b.pMax.x; xy[2] = b.pMin.y; xy[3] = b.pMax.y;
+        z01[2 * i] = b.pMin.z; z01[2 * i + 1] = b.pMax.z;
+    }
+};
+static_assert(sizeof(BVHNode) == 64, "BVHNode must stay 64 bytes");
+
+// One primitive reference in a leaf: the geometry id and primitive, plus a copy of the
+// triangle's render-space vertices so a leaf test needs no index indirection (three 16-byte
+// loads on the GPU). Spheres and disks leave p0..p2 zero and are read from SceneView.
+// With spatial splits a primitive may be referenced from several leaves.
+struct alignas(16) PrimRef {
+    Vec3f p0;
+    uint32_t shape = 0;       // geometry id: index into SceneView::shapes
+    Vec3f p1;
+    uint32_t primitive = 0;   // triangle index within its mesh; 0 for spheres and disks
+    Vec3f p2;
+    uint32_t kind = 0;        // ShapeKind of the shape (saves a Shape fetch for triangles)
+};
+static_assert(sizeof(PrimRef) == 48, "PrimRef must stay 48 bytes");
+
+// The BVH as spans (host or device memory). An empty `nodes` span means an empty scene.
+struct BVHView {
+    Span<BVHNode> nodes;
+    Span<PrimRef> prims;
+};
+
+// Statistics of a built BVH. SAH cost uses traversal cost 1 and intersection cost 1 per prim:
+// C = (sum over inner nodes of area + sum over leaves of area * count) / root area.
+struct BVHStats {
+    uint32_t primitives = 0;     // input primitives
+    uint32_t references = 0;     // prim refs in leaves (> primitives with spatial splits)
+    uint32_t innerNodes = 0, leaves = 0, maxDepth = 0, maxLeafSize = 0;
+    double sahCost = 0;
+    double buildSeconds = 0;
+};
+
+// A BVH built on the host, ready to upload (one copy per array).
+struct GpuBVH {
+    std::vector<BVHNode> nodes;
+    std::vector<PrimRef> prims;
+    Bounds3f bounds;             // of the whole scene (all primitives)
+    BVHStats stats;
+
+    BVHView View() const {
+        BVHView v;
+        v.nodes = Span<BVHNode>{nodes.data(), uint32_t(nodes.size())};
+        v.prims = Span<PrimRef>{prims.data(), uint32_t(prims.size())};
+        return v;
+    }
+};
+
+// Build options; the defaults are what every backend uses.
+struct BVHBuildOptions {
+    bool spatialSplits = true;   // SBVH-style splits (Embree's high-quality builder)
+    uint32_t maxLeafSize = 4;
+    float traversalCost = 1.0f, intersectionCost = 1.0f;
+};
+
+// Maximum tree depth the builder produces; the traversal stacks are sized from it.
+constexpr int BVHMaxDepth = 60;
+
+// Builds the BVH over every triangle, sphere and disk of `scene` (all shapes, interfaces
+// included) with Embree's SAH builder (rtcBuildBVH, RTC_BUILD_QUALITY_HIGH). Host only.
+GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options = {});
+
+// Render-space bounds of one primitive (analytic shapes: exact bounds of the transformed
+// sphere/disk, slightly padded for rounding). Host only.
+Bounds3f PrimitiveBounds(const SceneView &scene, uint32_t shape, uint32_t primitive);
+
+// Recomputes the statistics (SAH cost, depth, counts) of a built tree. Host only.
+BVHStats ComputeBVHStats(const GpuBVH &bvh);
+
+}  // namespace lu

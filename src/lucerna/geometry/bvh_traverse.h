@@ -1,0 +1,184 @@
+// Lucerna: stack-based BVH traversal shared by the CPU and CUDA backends (no recursion, fixed stack).
+// Ordered traversal of the Aila-Laine node layout (bvh.h); robust slab test after Ize 2013,
+// "Robust BVH Ray Traversal" (far distances scaled by 1 + 2 gamma(3), as pbrt-v4's Bounds3::IntersectP).
+#pragma once
+
+#include "lucerna/core/interaction.h"
+#include "lucerna/geometry/bvh.h"
+#include "lucerna/geometry/shapes.h"
+
+namespace lu {
+
+constexpr int BVHStackSize = BVHMaxDepth + 4;
+
+// 1 + 2 gamma(3) with gamma(n) = n u / (1 - n u), u = 2^-24 (Ize 2013; pbrt-v4 Bounds3::IntersectP).
+constexpr Float BVHFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+// Reciprocal of a direction component; zero components become a huge finite value of the same
+// sign so that slab distances stay finite (0 * huge = 0, never NaN).
+LU_INLINE Float SafeRcp(Float d) {
+    constexpr Float tiny = 1e-30f;
+    return 1 / (std::abs(d) < tiny ? std::copysign(tiny, d) : d);
+}
+
+// Loads a node; on the device through the read-only cache in four 16-byte loads.
+LU_INLINE BVHNode LoadBVHNode(const BVHNode *p) {
+#if defined(__CUDA_ARCH__)
+    const float4 *q = reinterpret_cast<const float4 *>(p);
+    float4 a = __ldg(q), b = __ldg(q + 1), c = __ldg(q + 2);
+    int4 d = __ldg(reinterpret_cast<const int4 *>(p) + 3);
+    BVHNode n;
+    n.xy0[0] = a.x; n.xy0[1] = a.y; n.xy0[2] = a.z; n.xy0[3] = a.w;
+    n.xy1[0] = b.x; n.xy1[1] = b.y; n.xy1[2] = b.z; n.xy1[3] = b.w;
+    n.z01[0] = c.x; n.z01[1] = c.y; n.z01[2] = c.z; n.z01[3] = c.w;
+    n.child[0] = d.x; n.child[1] = d.y;
+    n.count[0] = uint32_t(d.z); n.count[1] = uint32_t(d.w);
+    return n;
+#else
+    return *p;
+#endif
+}
+
+LU_INLINE PrimRef LoadPrimRef(const PrimRef *p) {
+#if defined(__CUDA_ARCH__)
+    const float4 *q = reinterpret_cast<const float4 *>(p);
+    float4 a = __ldg(q), b = __ldg(q + 1), c = __ldg(q + 2);
+    PrimRef r;
+    r.p0 = Vec3f(a.x, a.y, a.z); r.shape = __float_as_uint(a.w);
+    r.p1 = Vec3f(b.x, b.y, b.z); r.primitive = __float_as_uint(b.w);
+    r.p2 = Vec3f(c.x, c.y, c.z); r.kind = __float_as_uint(c.w);
+    return r;
+#else
+    return *p;
+#endif
+}
+
+// Slab test of both children of a node against the ray segment (0, tMax). On return hit[i]
+// says whether child i's box is crossed and tNear[i] where the ray enters it.
+LU_INLINE void IntersectChildBoxes(const BVHNode &n, const Vec3f &o, const Vec3f &invD, Float tMax, Float tNear[2],
+                                   bool hit[2]) {
+    const Float *xy[2] = {n.xy0, n.xy1};
+    for (int i = 0; i < 2; ++i) {
+        Float tx0 = (xy[i][0] - o.x) * invD.x, tx1 = (xy[i][1] - o.x) * invD.x;
+        Float ty0 = (xy[i][2] - o.y) * invD.y, ty1 = (xy[i][3] - o.y) * invD.y;
+        Float tz0 = (n.z01[2 * i] - o.z) * invD.z, tz1 = (n.z01[2 * i + 1] - o.z) * invD.z;
+        Float t0 = Max(Max(Min(tx0, tx1), Min(ty0, ty1)), Max(Min(tz0, tz1), Float(0)));
+        Float t1 = Min(Min(Max(tx0, tx1), Max(ty0, ty1)), Max(tz0, tz1)) * BVHFarScale;
+        tNear[i] = t0;
+        hit[i] = t0 <= Min(t1, tMax);
+    }
+}
+
+// Intersects one primitive reference in (0, tMax); b1, b2 are zero for analytic shapes.
+LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const Ray &ray, Float tMax, Float *t,
+                                Float *b1, Float *b2) {
+    switch (ShapeKind(p.kind)) {
+    case ShapeKind::Triangles:
+        return IntersectTriangle(p.p0, p.p1, p.p2, ray, tMax, t, b1, b2);
+    case ShapeKind::Sphere:
+        *b1 = *b2 = 0;
+        return IntersectSphere(scene.spheres[scene.shapes[p.shape].index], ray, tMax, t);
+    case ShapeKind::Disk:
+        *b1 = *b2 = 0;
+        return IntersectDisk(scene.disks[scene.shapes[p.shape].index], ray, tMax, t);
+    }
+    return false;
+}
+
+// Closest hit along the ray in (0, ray.tMax). On a hit fills *hit (t, shape, primitive, b1, b2)
+// and returns true; otherwise leaves *hit untouched.
+LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, const Ray &ray, HitRecord *hit) {
+    if (bvh.nodes.size == 0) return false;
+    Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
+    Float tClosest = ray.tMax;
+    HitRecord best;
+    int32_t stack[BVHStackSize];
+    int sp = 0;
+    int32_t node = 0;
+    while (true) {
+        BVHNode n = LoadBVHNode(bvh.nodes.ptr + node);
+        Float tNear[2];
+        bool boxHit[2];
+        IntersectChildBoxes(n, ray.o, invD, tClosest, tNear, boxHit);
+        int first = tNear[1] < tNear[0] ? 1 : 0;
+        int32_t next[2];
+        int nNext = 0;
+        for (int k = 0; k < 2; ++k) {
+            int i = k == 0 ? first : 1 - first;
+            if (!boxHit[i]) continue;
+            if (!n.IsLeaf(i)) {
+                next[nNext++] = n.child[i];
+                continue;
+            }
+            uint32_t begin = n.FirstPrim(i), end = begin + n.count[i];
+            for (uint32_t j = begin; j < end; ++j) {
+                PrimRef p = LoadPrimRef(bvh.prims.ptr + j);
+                Float t, b1, b2;
+                if (IntersectPrimRef(p, scene, ray, tClosest, &t, &b1, &b2)) {
+                    tClosest = t;
+                    best.t = t;
+                    best.shape = p.shape;
+                    best.primitive = p.primitive;
+                    best.b1 = b1;
+                    best.b2 = b2;
+                }
+            }
+        }
+        if (nNext == 2) {
+            if (sp < BVHStackSize) stack[sp++] = next[1];
+            node = next[0];
+        } else if (nNext == 1) {
+            node = next[0];
+        } else {
+            if (sp == 0) break;
+            node = stack[--sp];
+        }
+    }
+    if (!best.Hit()) return false;
+    *hit = best;
+    return true;
+}
+
+// Any hit in (0, ray.tMax) (shadow rays; tMax exclusive). Returns true if something is hit.
+LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ray &ray) {
+    if (bvh.nodes.size == 0) return false;
+    Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
+    int32_t stack[BVHStackSize];
+    int sp = 0;
+    int32_t node = 0;
+    while (true) {
+        BVHNode n = LoadBVHNode(bvh.nodes.ptr + node);
+        Float tNear[2];
+        bool boxHit[2];
+        IntersectChildBoxes(n, ray.o, invD, ray.tMax, tNear, boxHit);
+        int32_t next[2];
+        int nNext = 0;
+        for (int i = 0; i < 2; ++i) {
+            if (!boxHit[i]) continue;
+            if (!n.IsLeaf(i)) {
+                next[nNext++] = n.child[i];
+                continue;
+            }
+            uint32_t begin = n.FirstPrim(i), end = begin + n.count[i];
+            for (uint32_t j = begin; j < end; ++j) {
+                PrimRef p = LoadPrimRef(bvh.prims.ptr + j);
+                Float t, b1, b2;
+                if (IntersectPrimRef(p, scene, ray, ray.tMax, &t, &b1, &b2)) return true;
+            }
+        }
+        if (nNext == 2) {
+            int nearer = tNear[1] < tNear[0] ? 1 : 0;   // nearer first finds occluders sooner
+            int32_t a = n.child[nearer], b = n.child[1 - nearer];
+            if (sp < BVHStackSize) stack[sp++] = b;
+            node = a;
+        } else if (nNext == 1) {
+            node = next[0];
+        } else {
+            if (sp == 0) break;
+            node = stack[--sp];
+        }
+    }
+    return false;
+}
+
+}  // namespace lu
