@@ -11,22 +11,9 @@
 
 #include "lucerna/core/scene_data.h"
 #include "lucerna/image/image.h"
-#include "lucerna/spectrum/sampled.h"
+#include "lucerna/spectrum/color.h"
 
 namespace lu {
-
-// Sensor response (XYZ) of one sample, pbrt-v4's PixelSensor::ToSensorRGB for the CIE 1931
-// observer: the Monte Carlo estimate of integral xbar(l) L(l) dl over the sampled wavelengths.
-LU_INLINE void SampleToXYZ(const SampledSpectrum &L, const SampledWavelengths &lambda, const SpectrumTables &tab,
-                           Float imagingRatio, Float xyz[3]) {
-    Float sum[3] = {0, 0, 0};
-    for (int i = 0; i < NSpectrumSamples; ++i) {
-        if (lambda.pdf[i] == 0) continue;
-        Float v = L[i] / lambda.pdf[i];
-        for (int c = 0; c < 3; ++c) sum[c] += LookupTabulated(tab.data + size_t(c) * TabulatedSpectrumSize, lambda.lambda[i]) * v;
-    }
-    for (int c = 0; c < 3; ++c) xyz[c] = imagingRatio * sum[c] / NSpectrumSamples;
-}
 
 // One pass's samples (one per pixel) before they are committed to the film.
 struct PassBuffer {

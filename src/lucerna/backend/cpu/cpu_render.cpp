@@ -81,7 +81,7 @@ RenderStats RenderCPU(const HostScene &hs, const RenderJob &job, FilmAccumulator
                         CameraSampleResult cs = RenderSample(x, y, passIndex, sampler, scene, tracer, ps, ts.path);
                         ++ts.samples;
                         Float xyz[3];
-                        SampleToXYZ(cs.L, cs.lambda, scene.spectra, scene.film.imagingRatio, xyz);
+                        SensorXYZ(cs.L, cs.lambda, scene.spectra, scene.film.imagingRatio, xyz);
                         float *px = &pass.xyzw[(size_t(y) * width + x) * 4];
                         bool ok = std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]) &&
                                   std::isfinite(cs.filterWeight) && cs.L.MinValue() >= 0;
