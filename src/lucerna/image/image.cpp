@@ -104,6 +104,7 @@ Image ReadEXR(const std::string &filename, ImageMetadata *metadata) {
             if (list.findChannel("A")) names.push_back("A");
         } else if (list.findChannel("Y")) {
             names = {"Y"};
+            if (list.findChannel("A")) names.push_back("A");
         } else {
             int count = 0;
             std::string all, only;

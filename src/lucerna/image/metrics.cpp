@@ -121,7 +121,7 @@ Crop BlockRect(const ZTestResult &r, int bx, int by) {
 void FinishZResult(ZTestResult &r, const ZTestOptions &o) {
     r.tests = 0;
     for (size_t i = 0; i < r.z.size(); ++i) {
-        if (std::isnan(r.stdErr[i])) continue;
+        if (std::isnan(r.dof[i])) continue;  // dropped block
         ++r.tests;
         double tol2 = Sqr(o.relTolerance * std::abs(r.refMean[i])) + Sqr(o.absTolerance);
         double denom = std::sqrt(Sqr(r.stdErr[i]) + tol2);
@@ -139,7 +139,7 @@ void FinishZResult(ZTestResult &r, const ZTestOptions &o) {
         for (int bx = 0; bx < r.blocksX; ++bx)
             for (int c = 0; c < r.channels; ++c) {
                 size_t i = (size_t(by) * r.blocksX + bx) * r.channels + c;
-                if (std::isnan(r.stdErr[i])) continue;
+                if (std::isnan(r.dof[i])) continue;
                 double a = std::isnan(r.z[i]) ? Inf : std::abs(r.z[i]);  // NaN render values fail
                 if (a > r.threshold) ++r.failed;
                 if (a > r.maxAbsZ || r.worstBx < 0) {
@@ -480,6 +480,7 @@ double StudentTTwoSidedP(double t, double dof) {
 
 double TToZ(double t, double dof) {
     if (std::isnan(t)) return NaN;
+    if (t == 0) return 0;
     if (std::isinf(dof) || dof > 1e7) return std::clamp(t, -MaxZ, MaxZ);
     double p = StudentTTwoSidedP(t, dof);
     double z = p > 0 ? std::min(NormalUpperTailInverse(p / 2), MaxZ) : MaxZ;
