@@ -196,3 +196,33 @@ TEST(SpectrumRegistry, NamedIlluminants) {
 
 }  // namespace
 }  // namespace lu
+
+namespace lu {
+namespace {
+
+TEST(SpectrumRegistry, NamedMeasured) {
+    SpectrumRegistry reg;
+    std::vector<std::string> names = SpectrumRegistry::NamedSpectrumNames();
+    for (const char *m : {"Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"})
+        for (const char *q : {"-eta", "-k"}) {
+            std::string n = std::string("metal-") + m + q;
+            EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+            EXPECT_TRUE(reg.Named(n)) << n;
+        }
+    for (const char *g : {"glass-BK7", "glass-BAF10", "glass-FK51A", "glass-LASF9", "glass-F5", "glass-F10", "glass-F11"})
+        EXPECT_TRUE(reg.Named(g)) << g;
+    // Schott N-BK7: n_d = 1.5168 at the helium d line (587.56 nm).
+    EXPECT_NEAR(reg.Eval(*reg.Named("glass-BK7"), 587.56f), 1.5168f, 2e-4);
+    // Copper: eta ~ 0.27, k ~ 3.24 at 620 nm; gold eta ~ 0.194, k ~ 3.06 at 620 nm.
+    EXPECT_NEAR(reg.Eval(*reg.Named("metal-Cu-eta"), 619.920898f), 0.272f, 1e-3);
+    EXPECT_NEAR(reg.Eval(*reg.Named("metal-Cu-k"), 619.920898f), 3.24f, 1e-2);
+    EXPECT_NEAR(reg.Eval(*reg.Named("metal-Au-eta"), 619.920898f), 0.194f, 1e-3);
+    EXPECT_NEAR(reg.Eval(*reg.Named("metal-CuZn-k"), 600.f), 3.253f, 1e-4);
+    // Constant extension beyond the data (pbrt-v4 FromInterleaved): MgO ends at 767.68 nm.
+    EXPECT_NEAR(reg.Eval(*reg.Named("metal-MgO-eta"), 830.f), 1.72872f, 1e-5);
+    // Measured spectra are not normalized.
+    EXPECT_GT(reg.Eval(*reg.Named("metal-Al-k"), 500.f), 5.f);
+}
+
+}  // namespace
+}  // namespace lu
