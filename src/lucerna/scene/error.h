@@ -26,10 +26,15 @@ class SceneError : public std::runtime_error {
     const std::string &Message() const { return message_; }
     // The full diagnostic: "file:line:col: error: message\n<source line>\n<caret>".
     std::string Format() const;
+    // The offending source line, when the reader has it in memory (in-memory scenes); when
+    // empty, Format() reads the line from loc's file. (Additive; set by the parser.)
+    void SetSourceLine(std::string line) { sourceLine_ = std::move(line); }
+    const std::string &SourceLine() const { return sourceLine_; }
 
   private:
     FileLoc loc_;
     std::string message_;
+    std::string sourceLine_;
 };
 
 // Warnings go to stderr as "file:line:col: warning: message" and are also collected so that
