@@ -1,0 +1,146 @@
+// Lucerna scene builder internals: the state shared by builder.cpp and build_*.cpp while one
+// SceneDescription is interpreted (host only; not part of the public API).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "lucerna/scene/builder.h"
+
+namespace lu::build {
+
+// ---- Errors ----
+
+[[noreturn]] inline void Fail(const FileLoc &loc, const std::string &message) { throw SceneError(loc, message); }
+// Unsupported feature that would change the picture: an error naming it.
+[[noreturn]] inline void FailUnsupported(const FileLoc &loc, const std::string &feature, const std::string &why = "") {
+    throw SceneError(loc, feature + " is not supported" + (why.empty() ? std::string() : " (" + why + ")"));
+}
+// Location of a parameter (without marking it used), or `fallback` when absent.
+inline FileLoc ParamLoc(const ParameterDictionary &params, const std::string &name, const FileLoc &fallback) {
+    for (const ParsedParameter &p : params.All())
+        if (p.name == name) return p.loc;
+    return fallback;
+}
+inline std::string Quoted(const std::string &s) { return "\"" + s + "\""; }
+
+// ---- Transforms (host) ----
+
+inline Transform MakeTransform(const Matrix4 &m) {
+    Matrix4 inv;
+    if (!Inverse(m, &inv)) inv = Matrix4();
+    return Transform(m, inv);
+}
+inline Transform TranslateTransform(const Vec3f &d) {
+    Matrix4 m;
+    m.m[0][3] = d.x; m.m[1][3] = d.y; m.m[2][3] = d.z;
+    Matrix4 mi;
+    mi.m[0][3] = -d.x; mi.m[1][3] = -d.y; mi.m[2][3] = -d.z;
+    return Transform(m, mi);
+}
+// The transform whose upper 3x3 has columns x, y, z (maps local axes to these vectors).
+inline Transform FromColumns(const Vec3f &x, const Vec3f &y, const Vec3f &z) {
+    Matrix4 m;
+    for (int r = 0; r < 3; ++r) { m.m[r][0] = x[r]; m.m[r][1] = y[r]; m.m[r][2] = z[r]; }
+    return MakeTransform(m);
+}
+// True when the transform scales lengths (pbrt-v4's Transform::HasScale, tolerance 1e-3).
+inline bool HasScale(const Transform &t) {
+    for (int i = 0; i < 3; ++i) {
+        Vec3f e(i == 0, i == 1, i == 2);
+        Float l2 = LengthSquared(t.ApplyVector(e));
+        if (l2 < 0.999f || l2 > 1.001f) return true;
+    }
+    return false;
+}
+
+// ---- Per-build state ----
+
+struct ImageKey {
+    std::string path;
+    bool linear = false;
+    bool operator<(const ImageKey &o) const { return std::tie(path, linear) < std::tie(o.path, o.linear); }
+};
+struct LoadedImage {
+    uint32_t width = 0, height = 0, channels = 0;
+    uint64_t offset = 0;
+};
+
+struct AreaLightParams {
+    Spectrum L;
+    Float scale = 1;      // "scale" / SpectrumToPhotometric(L)
+    Float power = -1;     // "power" (<= 0: none)
+    bool twoSided = false;
+};
+
+struct BuildContext {
+    const SceneDescription &desc;
+    Diagnostics &diag;
+    const BuildOptions &opts;
+    HostScene &scene;
+
+    // Textures by name (the last definition wins is not allowed: redefinitions are errors).
+    std::map<std::string, const TextureEntity *> floatTextures, spectrumTextures;
+    std::map<ImageKey, LoadedImage> imageCache;
+    std::map<std::tuple<uint64_t, int>, uint32_t> imageDataCache;  // (texel offset, wrap) -> images index
+    // Built textures, memoized per name (and spectrum type): each entity is interpreted once.
+    std::map<std::string, FloatTexture> floatTextureCache;
+    std::map<std::pair<std::string, int>, SpectrumTexture> spectrumTextureCache;
+    std::set<std::string> texturesBuilding;  // cycle detection
+
+    // Materials: desc.materials[i] -> scene.materials index (NoIndex: interface).
+    std::vector<uint32_t> anonymousMaterials;
+    std::vector<std::string> anonymousMaterialTypes;
+    std::map<std::string, uint32_t> namedMaterials;
+    std::map<std::string, std::string> namedMaterialTypes;
+    uint32_t defaultMaterial = NoIndex;  // diffuse 0.5, created on first use
+
+    // Area light entities already interpreted (ReportUnused once each).
+    std::map<int, AreaLightParams> areaLights;
+
+    SpectrumRegistry &Registry() { return scene.spectra; }
+};
+
+// ---- build_spectra.cpp ----
+
+// The color space's standard illuminant (D65) as a Spectrum.
+Spectrum IlluminantSpectrum();
+// A spectrum-valued parameter ("rgb", "spectrum" (pairs, named or file), "blackbody") as pbrt-v4's
+// ParameterDictionary::GetOneSpectrum; nullopt when absent. Other types of that name are errors.
+std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary &params, const std::string &name,
+                                    SpectrumType type);
+// A named spectrum or a spectrum file (relative to the scene directory); SceneError at loc if neither.
+Spectrum NamedOrFileSpectrum(BuildContext &ctx, const std::string &name, const FileLoc &loc);
+
+// ---- build_materials.cpp ----
+
+void IndexTextures(BuildContext &ctx);
+void BuildMaterials(BuildContext &ctx);
+// Material of a shape: scene.materials index or NoIndex (interface); *type gets the pbrt type name.
+uint32_t ResolveShapeMaterial(BuildContext &ctx, const ShapeEntity &shape, std::string *type);
+// Loads an image file into scene.texels (cached); SceneError at loc on failure.
+LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLinear, const FileLoc &loc);
+uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap);
+std::string ResolvePath(const std::string &baseDirectory, const std::string &filename);
+
+// ---- build_shapes.cpp ----
+
+void BuildShapes(BuildContext &ctx);
+
+// ---- build_lights.cpp ----
+
+void BuildLights(BuildContext &ctx);
+// Scene bounding sphere for distant / infinite lights and the power-proportional light CDF
+// (after all geometry exists).
+void FinishLights(BuildContext &ctx);
+// pbrt-v4's DiffuseAreaLight::Create, split in two: the parameters (parsed once per
+// AreaLightSource), and the per-primitive scale (the "power" normalization uses the area of
+// each emitting primitive, as pbrt-v4 creates one light per primitive).
+const AreaLightParams &ParseAreaLight(BuildContext &ctx, int areaLightIndex);
+Float AreaLightPrimitiveScale(const AreaLightParams &p, Float area);
+
+}  // namespace lu::build

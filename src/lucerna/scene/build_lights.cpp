@@ -1,0 +1,202 @@
+// Lucerna scene builder: light sources (point, spot, distant, infinite, diffuse area), after
+// pbrt-v4's lights.cpp Create() functions: "scale" divided by SpectrumToPhotometric of the
+// emission, "power" / "illuminance" normalizations, and the power-proportional light sampler.
+#include <cmath>
+#include <filesystem>
+
+#include "lucerna/lights/equal_area.h"
+#include "lucerna/lights/light_sampler.h"
+#include "lucerna/scene/build_internal.h"
+
+namespace lu::build {
+
+// ---- Area lights ----
+
+const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
+    if (auto it = ctx.areaLights.find(index); it != ctx.areaLights.end()) return it->second;
+    const SceneEntity &e = ctx.desc.areaLights[size_t(index)];
+    if (e.name != "diffuse") Fail(e.loc, "unknown area light type " + Quoted(e.name));
+    const ParameterDictionary &p = e.params;
+    AreaLightParams a;
+    std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
+    Float scale = Float(p.GetOneFloat("scale", 1));
+    a.twoSided = p.GetOneBool("twosided", false);
+    if (!p.GetOneString("filename", "").empty())
+        FailUnsupported(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\" with an image (\"filename\")");
+    a.L = L ? *L : IlluminantSpectrum();
+    // Scale so that the radiance is equivalent to 1 nit.
+    Float photometric = ctx.Registry().ToPhotometric(a.L);
+    a.scale = photometric > 0 ? scale / photometric : scale;
+    a.power = Float(p.GetOneFloat("power", -1));
+    p.ReportUnused(ctx.diag, "AreaLightSource " + Quoted(e.name));
+    return ctx.areaLights[index] = a;
+}
+
+Float AreaLightPrimitiveScale(const AreaLightParams &a, Float area) {
+    Float scale = a.scale;
+    if (a.power > 0) {
+        // pbrt-v4: k_e = (twoSided ? 2 : 1) * area * pi (the spectrum is already photometrically
+        // normalized; an RGB's own luminance is not accounted for).
+        Float k_e = (a.twoSided ? 2 : 1) * area * Pi;
+        if (k_e > 0) scale *= a.power / k_e;
+    }
+    return scale;
+}
+
+// ---- LightSource ----
+
+namespace {
+
+Float Photometric(BuildContext &ctx, const Spectrum &s) {
+    Float v = ctx.Registry().ToPhotometric(s);
+    return v > 0 ? v : 1;
+}
+
+std::string LightPath(BuildContext &ctx, const std::string &filename) {
+    return ResolvePath(ctx.desc.baseDirectory, filename);
+}
+
+void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
+    const ParameterDictionary &p = e.params;
+    std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
+    Float scale = Float(p.GetOneFloat("scale", 1));
+    std::vector<Vec3f> portal = p.GetPoint3fArray("portal");
+    std::string filename = p.GetOneString("filename", "");
+    Float E_v = Float(p.GetOneFloat("illuminance", -1));
+    if (!portal.empty()) FailUnsupported(ParamLoc(p, "portal", e.loc), "infinite light \"portal\"");
+    l.renderFromLight = e.renderFromObject;
+    if (filename.empty()) {
+        // Uniform: "L", or the color space's illuminant.
+        l.kind = LightKind::UniformInfinite;
+        l.spectrum = L ? *L : IlluminantSpectrum();
+        l.scale = scale / Photometric(ctx, l.spectrum);
+        if (E_v > 0) l.scale *= E_v / Pi;  // illuminance of uniform emission on an upward-facing patch
+        return;
+    }
+    if (L) Fail(e.loc, "can't specify both emission \"L\" and \"filename\" with an infinite light");
+    std::string path = LightPath(ctx, filename);
+    LoadedImage img = LoadImage(ctx, path, false, ParamLoc(p, "filename", e.loc));
+    if (img.channels < 3)
+        Fail(ParamLoc(p, "filename", e.loc), Quoted(filename) + ": image provided to \"infinite\" light must have R, G, and B channels");
+    if (img.width != img.height)
+        Fail(ParamLoc(p, "filename", e.loc), Quoted(filename) + ": image resolution (" + std::to_string(img.width) + ", " +
+                                                 std::to_string(img.height) + ") is non-square; it is unlikely to be an "
+                                                                              "equal-area environment map");
+    l.kind = LightKind::ImageInfinite;
+    l.spectrum = IlluminantSpectrum();
+    l.scale = scale / Photometric(ctx, IlluminantSpectrum());
+    const Float *texels = ctx.scene.texels.data() + img.offset;
+    if (E_v > 0) {
+        // pbrt-v4: upper-hemisphere illuminance of the map (sRGB luminance weights), times 2 pi / N.
+        Float lum[3];  // the color space's LuminanceVector: Y of each primary
+        for (int c = 0; c < 3; ++c) lum[c] = RGBToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
+        double illuminance = 0;
+        for (uint32_t y = 0; y < img.height; ++y) {
+            Float v = (Float(y) + 0.5f) / Float(img.height);
+            for (uint32_t x = 0; x < img.width; ++x) {
+                Float u = (Float(x) + 0.5f) / Float(img.width);
+                Vec3f w = EqualAreaSquareToSphere(Vec2f(u, v));
+                if (w.z <= 0) continue;
+                const Float *t = texels + (size_t(y) * img.width + x) * img.channels;
+                for (int c = 0; c < 3; ++c) illuminance += double(t[c]) * lum[c] * w.z;
+            }
+        }
+        illuminance *= 2 * Pi / (double(img.width) * img.height);
+        if (illuminance > 0) l.scale *= Float(E_v / illuminance);
+    }
+    l.image = AddImageData(ctx, img, WrapMode::Clamp);  // lookups wrap octahedrally (lights/lights.h)
+    l.distribution = BuildImageInfiniteDistributions(texels, int(img.width), int(img.height), int(img.channels),
+                                                     ctx.scene.distributions2D, ctx.scene.distData);
+}
+
+}  // namespace
+
+void BuildLights(BuildContext &ctx) {
+    HostScene &s = ctx.scene;
+    for (const LightEntity &e : ctx.desc.lights) {
+        if (!e.outsideMedium.empty())
+            FailUnsupported(e.loc, "MediumInterface " + Quoted(e.outsideMedium) + " for a light (participating media)");
+        const ParameterDictionary &p = e.params;
+        const Transform &ctm = e.renderFromObject;
+        Light l;
+        if (e.name == "point") {
+            std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
+            l.kind = LightKind::Point;
+            l.spectrum = I ? *I : IlluminantSpectrum();
+            l.scale = Float(p.GetOneFloat("scale", 1)) / Photometric(ctx, l.spectrum);
+            Float phi_v = Float(p.GetOneFloat("power", -1));
+            if (phi_v > 0) l.scale *= phi_v / (4 * Pi);
+            Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
+            l.renderFromLight = ctm * TranslateTransform(from);
+            l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
+        } else if (e.name == "spot") {
+            std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
+            l.kind = LightKind::Spot;
+            l.spectrum = I ? *I : IlluminantSpectrum();
+            Float scale = Float(p.GetOneFloat("scale", 1));
+            Float coneAngle = Float(p.GetOneFloat("coneangle", 30));
+            Float coneDelta = Float(p.GetOneFloat("conedeltaangle", 5));
+            Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
+            Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
+            if (!(LengthSquared(to - from) > 0)) Fail(e.loc, "spot light: \"from\" and \"to\" must differ");
+            Frame f = Frame::FromZ(Normalize(to - from));
+            l.renderFromLight = ctm * TranslateTransform(from) * FromColumns(f.x, f.y, f.z);
+            l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
+            l.direction = Normalize(l.renderFromLight.ApplyVector(Vec3f(0, 0, 1)));
+            l.cosFalloffEnd = std::cos(Radians(coneAngle));
+            l.cosFalloffStart = std::cos(Radians(coneAngle - coneDelta));
+            l.scale = scale / Photometric(ctx, l.spectrum);
+            Float phi_v = Float(p.GetOneFloat("power", -1));
+            if (phi_v > 0) {
+                Float k_e = 2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2);
+                if (k_e > 0) l.scale *= phi_v / k_e;
+            }
+        } else if (e.name == "distant") {
+            std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
+            l.kind = LightKind::Distant;
+            l.spectrum = L ? *L : IlluminantSpectrum();
+            Float scale = Float(p.GetOneFloat("scale", 1));
+            Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
+            Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
+            if (!(LengthSquared(from - to) > 0)) Fail(e.loc, "distant light: \"from\" and \"to\" must differ");
+            Vec3f w = Normalize(from - to), v1, v2;
+            CoordinateSystem(w, &v1, &v2);
+            l.renderFromLight = ctm * FromColumns(v1, v2, w);
+            l.direction = Normalize(l.renderFromLight.ApplyVector(Vec3f(0, 0, 1)));
+            l.scale = scale / Photometric(ctx, l.spectrum);
+            Float E_v = Float(p.GetOneFloat("illuminance", -1));
+            if (E_v > 0) l.scale *= E_v;
+        } else if (e.name == "infinite") {
+            BuildInfinite(ctx, e, l);
+        } else if (e.name == "goniometric" || e.name == "projection") {
+            FailUnsupported(e.loc, "LightSource " + Quoted(e.name));
+        } else {
+            Fail(e.loc, "unknown light type " + Quoted(e.name));
+        }
+        p.ReportUnused(ctx.diag, "LightSource " + Quoted(e.name));
+        s.stats.lightsByType[e.name]++;
+        if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
+            s.infiniteLights.push_back(uint32_t(s.lights.size()));
+        s.lights.push_back(l);
+    }
+}
+
+void FinishLights(BuildContext &ctx) {
+    HostScene &s = ctx.scene;
+    // pbrt-v4's Bounds3::BoundingSphere of the scene bounds.
+    Vec3f center;
+    Float radius = 0;
+    if (!s.bounds.Empty()) {
+        center = s.bounds.Center();
+        radius = Distance(center, s.bounds.pMax);
+    }
+    for (Light &l : s.lights)
+        if (l.kind == LightKind::Distant || l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite) {
+            l.sceneCenter = center;
+            l.sceneRadius = radius;
+        }
+    s.lightCdf.clear();
+    s.lightCdf = BuildLightCdf(s.View());
+}
+
+}  // namespace lu::build

@@ -1,0 +1,401 @@
+// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, sphere, disk), their area
+// lights and flattened object instances, after pbrt-v4's shapes.cpp Create() functions,
+// TriangleMesh (util/mesh.cpp) and BasicScene::CreateLights / CreateAggregate (scene.cpp).
+#include <cmath>
+
+#include "lucerna/scene/build_internal.h"
+
+#if __has_include("lucerna/scene/ply.h")
+#include "lucerna/scene/ply.h"
+#define LUCERNA_HAVE_PLY 1
+#endif
+
+namespace lu::build {
+
+namespace {
+
+// Raw (object-space) triangle geometry of one shape before it is placed in the scene.
+struct MeshData {
+    std::vector<Vec3f> P, N;
+    std::vector<Vec2f> uv;
+    std::vector<uint32_t> indices;
+    // Area used by the "power" normalization of each triangle's light; empty: the triangle's
+    // own render-space area (bilinear patches use the patch area, as pbrt-v4 has one light per patch).
+    std::vector<Float> powerArea;
+};
+
+// What a Shape directive becomes, and where it goes.
+struct Placement {
+    const ShapeEntity *shape = nullptr;
+    Transform renderFromObject;
+    bool reverseOrientation = false;
+    bool analyticSwapsHandedness = false;  // handedness of the shape's own transform (instances: not the instance's)
+    uint32_t material = NoIndex;
+    const AreaLightParams *areaLight = nullptr;
+};
+
+void ExpandBounds(Bounds3f &b, const Transform &t, const Vec3f &pMin, const Vec3f &pMax) {
+    for (int i = 0; i < 8; ++i) {
+        Vec3f p((i & 1) ? pMax.x : pMin.x, (i & 2) ? pMax.y : pMin.y, (i & 4) ? pMax.z : pMin.z);
+        b.Expand(t.ApplyPoint(p));
+    }
+}
+
+uint32_t AddAreaLights(BuildContext &ctx, const Placement &pl, uint32_t shapeIndex, const std::vector<Float> &areas) {
+    HostScene &s = ctx.scene;
+    uint32_t first = uint32_t(s.lights.size());
+    for (size_t i = 0; i < areas.size(); ++i) {
+        Light l;
+        l.kind = LightKind::DiffuseArea;
+        l.spectrum = pl.areaLight->L;
+        l.scale = AreaLightPrimitiveScale(*pl.areaLight, areas[i]);
+        l.renderFromLight = pl.renderFromObject;
+        l.shape = shapeIndex;
+        l.primitive = uint32_t(i);
+        l.twoSided = pl.areaLight->twoSided;
+        s.lights.push_back(l);
+    }
+    s.stats.lightsByType["diffuse area"] += int(areas.size());
+    return first;
+}
+
+// Adds a triangle mesh in render space: vertices by renderFromObject, normals by its inverse
+// transpose and negated for ReverseOrientation (pbrt-v4's TriangleMesh constructor).
+void AddTriangles(BuildContext &ctx, const Placement &pl, MeshData &mesh) {
+    HostScene &s = ctx.scene;
+    const Transform &t = pl.renderFromObject;
+    TriangleMesh tm;
+    tm.firstVertex = uint32_t(s.positions.size());
+    tm.vertexCount = uint32_t(mesh.P.size());
+    tm.firstIndex = uint32_t(s.indices.size());
+    tm.triangleCount = uint32_t(mesh.indices.size() / 3);
+    tm.flipNormals = pl.reverseOrientation != t.SwapsHandedness();
+    for (const Vec3f &p : mesh.P) {
+        Vec3f q = t.ApplyPoint(p);
+        s.positions.push_back(q);
+        s.bounds.Expand(q);
+    }
+    if (!mesh.N.empty()) {
+        tm.normalOffset = uint32_t(s.normals.size());
+        for (const Vec3f &n : mesh.N) {
+            Vec3f m = t.ApplyNormal(n);
+            s.normals.push_back(pl.reverseOrientation ? -m : m);
+        }
+    }
+    if (!mesh.uv.empty()) {
+        tm.uvOffset = uint32_t(s.uvs.size());
+        s.uvs.insert(s.uvs.end(), mesh.uv.begin(), mesh.uv.end());
+    }
+    s.indices.insert(s.indices.end(), mesh.indices.begin(), mesh.indices.end());
+
+    Shape shape;
+    shape.kind = ShapeKind::Triangles;
+    shape.index = uint32_t(s.triangleMeshes.size());
+    shape.material = pl.material;
+    shape.primitiveCount = tm.triangleCount;
+    uint32_t shapeIndex = uint32_t(s.shapes.size());
+    if (pl.areaLight) {
+        std::vector<Float> areas(tm.triangleCount);
+        for (uint32_t i = 0; i < tm.triangleCount; ++i) {
+            if (!mesh.powerArea.empty()) { areas[i] = mesh.powerArea[i]; continue; }
+            const Vec3f &p0 = s.positions[tm.firstVertex + mesh.indices[3 * i]];
+            const Vec3f &p1 = s.positions[tm.firstVertex + mesh.indices[3 * i + 1]];
+            const Vec3f &p2 = s.positions[tm.firstVertex + mesh.indices[3 * i + 2]];
+            areas[i] = 0.5f * Length(Cross(p1 - p0, p2 - p0));
+        }
+        shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, areas);
+    }
+    s.triangleMeshes.push_back(tm);
+    s.shapes.push_back(shape);
+    s.stats.triangles += tm.triangleCount;
+}
+
+// pbrt-v4's Triangle::CreateMesh checks on P / indices / uv / N / S.
+void CheckMesh(BuildContext &ctx, const ShapeEntity &sh, MeshData &m, const char *what) {
+    if (m.P.empty()) Fail(sh.loc, std::string(what) + ": vertex positions \"P\" must be provided");
+    if (m.indices.empty()) {
+        if (m.P.size() == 3) m.indices = {0, 1, 2};
+        else Fail(sh.loc, std::string(what) + ": vertex indices \"indices\" must be provided");
+    } else if (m.indices.size() % 3 != 0) {
+        ctx.diag.Warning(sh.loc, std::string(what) + ": number of vertex indices " + std::to_string(m.indices.size()) +
+                                     " is not a multiple of 3; discarding " + std::to_string(m.indices.size() % 3) + " excess");
+        m.indices.resize(m.indices.size() - m.indices.size() % 3);
+    }
+    for (uint32_t i : m.indices)
+        if (i >= m.P.size())
+            Fail(sh.loc, std::string(what) + " has out-of-bounds vertex index " + std::to_string(i) + " (" +
+                             std::to_string(m.P.size()) + " \"P\" values were given)");
+    if (!m.uv.empty() && m.uv.size() != m.P.size()) {
+        ctx.diag.Warning(sh.loc, std::string(what) + ": number of \"uv\"s must match \"P\"s; discarding uvs");
+        m.uv.clear();
+    }
+    if (!m.N.empty() && m.N.size() != m.P.size()) {
+        ctx.diag.Warning(sh.loc, std::string(what) + ": number of \"N\"s must match \"P\"s; discarding \"N\"s");
+        m.N.clear();
+    }
+}
+
+std::vector<uint32_t> ToIndices(BuildContext &ctx, const ShapeEntity &sh, const std::vector<int> &v) {
+    std::vector<uint32_t> r;
+    r.reserve(v.size());
+    for (int i : v) {
+        if (i < 0) Fail(ParamLoc(sh.params, "indices", sh.loc), "negative vertex index " + std::to_string(i));
+        r.push_back(uint32_t(i));
+    }
+    return r;
+}
+
+void BuildTriangleMesh(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    MeshData m;
+    m.indices = ToIndices(ctx, sh, p.GetIntArray("indices"));
+    m.P = p.GetPoint3fArray("P");
+    m.uv = p.GetPoint2fArray("uv");
+    m.N = p.GetNormal3fArray("N");
+    std::vector<Vec3f> S = p.GetVector3fArray("S");
+    (void)p.GetIntArray("faceIndices");  // only used by ptex textures
+    CheckMesh(ctx, sh, m, "trianglemesh");
+    if (!S.empty())
+        ctx.diag.Unsupported(ParamLoc(p, "S", sh.loc), "trianglemesh per-vertex tangents \"S\"",
+                             "the shading frame's tangent comes from the uv parameterization");
+    AddTriangles(ctx, pl, m);
+}
+
+void BuildPlyMesh(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    std::string filename = p.GetOneString("filename", "");
+    if (filename.empty()) Fail(sh.loc, "plymesh: \"string filename\" must be provided");
+    if (p.Has("displacement")) {
+        (void)p.Find("displacement");
+        (void)p.GetOneFloat("edgelength", 1);
+        ctx.diag.Unsupported(ParamLoc(p, "displacement", sh.loc), "plymesh \"displacement\"", "the mesh is not displaced");
+    }
+    std::string path = ResolvePath(sh.baseDirectory.empty() ? ctx.desc.baseDirectory : sh.baseDirectory, filename);
+#ifdef LUCERNA_HAVE_PLY
+    PlyMesh ply = ReadPlyMesh(path, sh.loc);
+    MeshData m;
+    m.P.reserve(ply.P.size());
+    for (const auto &v : ply.P) m.P.push_back(Vec3f(Float(v.x), Float(v.y), Float(v.z)));
+    for (const auto &v : ply.N) m.N.push_back(Vec3f(Float(v.x), Float(v.y), Float(v.z)));
+    for (const auto &v : ply.uv) m.uv.push_back(Vec2f(Float(v.x), Float(v.y)));
+    m.indices.reserve(ply.indices.size());
+    for (auto i : ply.indices) {
+        if (i < 0) Fail(sh.loc, "plymesh " + Quoted(filename) + ": negative vertex index");
+        m.indices.push_back(uint32_t(i));
+    }
+    if (m.indices.empty()) Fail(sh.loc, "plymesh " + Quoted(filename) + ": no faces");
+    CheckMesh(ctx, sh, m, "plymesh");
+    AddTriangles(ctx, pl, m);
+#else
+    Fail(sh.loc, "plymesh " + Quoted(path) + ": this build has no PLY reader");
+#endif
+}
+
+// pbrt-v4's bilinear patches (vertices p00, p10, p01, p11), triangulated as (p00, p10, p11) and
+// (p00, p11, p01); each patch gets its own four vertices with the patch's (u, v) when no "uv".
+void BuildBilinearMesh(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    std::vector<uint32_t> vi = ToIndices(ctx, sh, p.GetIntArray("indices"));
+    std::vector<Vec3f> P = p.GetPoint3fArray("P");
+    std::vector<Vec2f> uv = p.GetPoint2fArray("uv");
+    std::vector<Vec3f> N = p.GetNormal3fArray("N");
+    (void)p.GetIntArray("faceIndices");
+    if (p.Has("emissionfilename"))
+        FailUnsupported(ParamLoc(p, "emissionfilename", sh.loc), "bilinearmesh \"emissionfilename\" (textured emission)");
+    if (P.empty()) Fail(sh.loc, "bilinearmesh: vertex positions \"P\" must be provided");
+    if (vi.empty()) {
+        if (P.size() == 4) vi = {0, 1, 2, 3};
+        else Fail(sh.loc, "bilinearmesh: vertex indices \"indices\" must be provided");
+    } else if (vi.size() % 4 != 0) {
+        ctx.diag.Warning(sh.loc, "bilinearmesh: number of vertex indices is not a multiple of 4; discarding excess");
+        vi.resize(vi.size() - vi.size() % 4);
+    }
+    for (uint32_t i : vi)
+        if (i >= P.size()) Fail(sh.loc, "bilinearmesh has out-of-bounds vertex index " + std::to_string(i));
+    if (!uv.empty() && uv.size() != P.size()) {
+        ctx.diag.Warning(sh.loc, "bilinearmesh: number of \"uv\"s must match \"P\"s; discarding uvs");
+        uv.clear();
+    }
+    if (!N.empty() && N.size() != P.size()) {
+        ctx.diag.Warning(sh.loc, "bilinearmesh: number of \"N\"s must match \"P\"s; discarding \"N\"s");
+        N.clear();
+    }
+    MeshData m;
+    bool warned = false;
+    static const Vec2f patchUV[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    for (size_t q = 0; q < vi.size(); q += 4) {
+        uint32_t base = uint32_t(m.P.size());
+        for (int k = 0; k < 4; ++k) {
+            uint32_t v = vi[q + k];
+            m.P.push_back(P[v]);
+            if (!N.empty()) m.N.push_back(N[v]);
+            m.uv.push_back(uv.empty() ? patchUV[k] : uv[v]);
+        }
+        const uint32_t tri[6] = {0, 1, 3, 0, 3, 2};
+        for (uint32_t k : tri) m.indices.push_back(base + k);
+        // Render-space patch area (pbrt-v4 normalizes "power" per patch) and planarity.
+        Vec3f w[4];
+        for (int k = 0; k < 4; ++k) w[k] = pl.renderFromObject.ApplyPoint(m.P[base + k]);
+        Float a0 = 0.5f * Length(Cross(w[1] - w[0], w[3] - w[0]));
+        Float a1 = 0.5f * Length(Cross(w[3] - w[0], w[2] - w[0]));
+        m.powerArea.push_back(a0 + a1);
+        m.powerArea.push_back(a0 + a1);
+        Vec3f n = Cross(w[1] - w[0], w[2] - w[0]);
+        Float size = Max(Length(w[3] - w[0]), Length(w[2] - w[1]));
+        if (!warned && LengthSquared(n) > 0 && size > 0 &&
+            std::abs(Dot(Normalize(n), w[3] - w[0])) > 1e-4f * size) {
+            ctx.diag.Warning(sh.loc, "bilinearmesh: patch " + std::to_string(q / 4) +
+                                         " is not planar; rendered as two triangles (pbrt-v4 renders the curved patch)");
+            warned = true;
+        }
+    }
+    if (!pl.areaLight) m.powerArea.clear();
+    AddTriangles(ctx, pl, m);
+}
+
+void BuildSphere(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    Float radius = Float(p.GetOneFloat("radius", 1));
+    Float zmin = Float(p.GetOneFloat("zmin", -radius)), zmax = Float(p.GetOneFloat("zmax", radius));
+    Float phimax = Float(p.GetOneFloat("phimax", 360));
+    if (!(radius > 0)) Fail(ParamLoc(p, "radius", sh.loc), "sphere radius must be positive");
+    // pbrt-v4 clamps z to [-r, r] and phi to [0, 360]; anything short of the full sphere is partial.
+    Float z0 = Clamp(Min(zmin, zmax), -radius, radius), z1 = Clamp(Max(zmin, zmax), -radius, radius);
+    if (z0 > -radius || z1 < radius || Clamp(phimax, Float(0), Float(360)) < 360)
+        FailUnsupported(sh.loc, "partial sphere (\"zmin\", \"zmax\", \"phimax\")");
+    HostScene &s = ctx.scene;
+    Sphere sp;
+    sp.renderFromObject = pl.renderFromObject;
+    sp.radius = radius;
+    sp.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
+    ExpandBounds(s.bounds, sp.renderFromObject, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
+    Shape shape;
+    shape.kind = ShapeKind::Sphere;
+    shape.index = uint32_t(s.spheres.size());
+    shape.material = pl.material;
+    uint32_t shapeIndex = uint32_t(s.shapes.size());
+    if (pl.areaLight) {
+        if (HasScale(pl.renderFromObject))
+            ctx.diag.Warning(sh.loc, "scaling detected in the area light's transformation: pbrt-v4 assumes none "
+                                     "(its power and sampling use the object-space radius)");
+        shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, {4 * Pi * radius * radius});  // object-space area, as pbrt-v4
+    }
+    s.spheres.push_back(sp);
+    s.shapes.push_back(shape);
+}
+
+void BuildDisk(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    Float height = Float(p.GetOneFloat("height", 0));
+    Float radius = Float(p.GetOneFloat("radius", 1));
+    Float inner = Float(p.GetOneFloat("innerradius", 0));
+    Float phimax = Float(p.GetOneFloat("phimax", 360));
+    if (Clamp(phimax, Float(0), Float(360)) < 360) FailUnsupported(sh.loc, "partial disk (\"phimax\")");
+    if (!(radius > 0) || inner < 0 || inner >= radius)
+        Fail(sh.loc, "disk needs 0 <= innerradius < radius");
+    HostScene &s = ctx.scene;
+    Disk d;
+    d.renderFromObject = pl.renderFromObject;
+    d.height = height;
+    d.radius = radius;
+    d.innerRadius = inner;
+    d.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
+    ExpandBounds(s.bounds, d.renderFromObject, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
+    Shape shape;
+    shape.kind = ShapeKind::Disk;
+    shape.index = uint32_t(s.disks.size());
+    shape.material = pl.material;
+    uint32_t shapeIndex = uint32_t(s.shapes.size());
+    if (pl.areaLight) {
+        if (HasScale(pl.renderFromObject))
+            ctx.diag.Warning(sh.loc, "scaling detected in the area light's transformation: pbrt-v4 assumes none "
+                                     "(its power and sampling use the object-space radius)");
+        shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, {Pi * (radius * radius - inner * inner)});
+    }
+    s.disks.push_back(d);
+    s.shapes.push_back(shape);
+}
+
+void CheckMedia(const ShapeEntity &sh) {
+    if (!sh.insideMedium.empty() || !sh.outsideMedium.empty())
+        FailUnsupported(sh.loc, "MediumInterface " + Quoted(sh.insideMedium) + " " + Quoted(sh.outsideMedium) +
+                                    " (participating media)");
+}
+
+// Builds one Shape directive at its placement; returns false for unknown names (reported by caller).
+void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
+    const ShapeEntity &sh = *pl.shape;
+    const std::string &name = sh.name;
+    const ParameterDictionary &p = sh.params;
+    // Alpha cut-outs change visibility: refuse anything but fully opaque.
+    if (p.TypeOf("alpha") == "texture") FailUnsupported(ParamLoc(p, "alpha", sh.loc), "shape \"alpha\" texture");
+    if (p.Has("alpha") && p.GetOneFloat("alpha", 1) < 1) FailUnsupported(ParamLoc(p, "alpha", sh.loc), "shape \"alpha\" < 1");
+    if (name == "trianglemesh") BuildTriangleMesh(ctx, pl);
+    else if (name == "plymesh") BuildPlyMesh(ctx, pl);
+    else if (name == "bilinearmesh") BuildBilinearMesh(ctx, pl);
+    else if (name == "sphere") BuildSphere(ctx, pl);
+    else if (name == "disk") BuildDisk(ctx, pl);
+    else if (name == "cylinder" || name == "curve" || name == "loopsubdiv")
+        FailUnsupported(sh.loc, "Shape " + Quoted(name));
+    else
+        Fail(sh.loc, "unknown shape type " + Quoted(name));
+    ctx.scene.stats.shapesByType[name]++;
+    if (reportUnused) p.ReportUnused(ctx.diag, "Shape " + Quoted(name));
+}
+
+}  // namespace
+
+void BuildShapes(BuildContext &ctx) {
+    const SceneDescription &desc = ctx.desc;
+    // ---- Top-level shapes ----
+    for (const ShapeEntity &sh : desc.shapes) {
+        CheckMedia(sh);
+        Placement pl;
+        pl.shape = &sh;
+        pl.renderFromObject = sh.renderFromObject;
+        pl.reverseOrientation = sh.reverseOrientation;
+        pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
+        std::string materialType;
+        pl.material = ResolveShapeMaterial(ctx, sh, &materialType);
+        if (sh.areaLightIndex >= 0) {
+            if (size_t(sh.areaLightIndex) >= desc.areaLights.size()) Fail(sh.loc, "internal: area light index out of range");
+            if (pl.material == NoIndex) {
+                ctx.diag.Warning(sh.loc, "ignoring area light specification for shape with \"interface\" material");
+            } else {
+                pl.areaLight = &ParseAreaLight(ctx, sh.areaLightIndex);
+                ctx.scene.stats.areaLightShapes++;
+            }
+        }
+        BuildOne(ctx, pl, true);
+    }
+
+    // ---- Object instances: flattened into render-space copies ----
+    ctx.scene.stats.instanceDefinitions = int(desc.instanceDefinitions.size());
+    std::set<const ShapeEntity *> reported;
+    for (const InstanceUse &use : desc.instances) {
+        auto it = desc.instanceDefinitions.find(use.name);
+        if (it == desc.instanceDefinitions.end()) Fail(use.loc, "object instance " + Quoted(use.name) + " is not defined");
+        ctx.scene.stats.instanceUses++;
+        for (const ShapeEntity &sh : it->second.shapes) {
+            CheckMedia(sh);
+            Placement pl;
+            pl.shape = &sh;
+            pl.renderFromObject = use.renderFromInstance * sh.renderFromObject;
+            pl.reverseOrientation = sh.reverseOrientation;
+            // pbrt-v4 orients analytic shapes in instance space, then transforms the normal.
+            pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
+            pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
+            bool first = reported.insert(&sh).second;
+            if (sh.areaLightIndex >= 0 && first)
+                ctx.diag.Warning(sh.loc, "area lights not supported with object instancing (as pbrt-v4): the shape does not emit");
+            BuildOne(ctx, pl, first);
+        }
+    }
+}
+
+}  // namespace lu::build

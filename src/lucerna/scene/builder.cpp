@@ -1,0 +1,354 @@
+// Lucerna scene builder: rendering options (Film, Camera, PixelFilter, Sampler, Integrator) and
+// the build order, after pbrt-v4's BasicScene::SetOptions and the Film / Camera / Filter /
+// Sampler / Integrator Create() functions (film.cpp, cameras.cpp, filters.cpp, ...).
+#include "lucerna/scene/builder.h"
+
+#include <array>
+#include <cmath>
+
+#include "lucerna/film/camera.h"
+#include "lucerna/film/filter.h"
+#include "lucerna/scene/build_internal.h"
+
+namespace lu {
+
+template <typename T>
+static Span<T> SpanOf(const std::vector<T> &v) {
+    return Span<T>{v.data(), uint32_t(v.size())};
+}
+
+SceneView HostScene::View() const {
+    SceneView v;
+    v.positions = SpanOf(positions);
+    v.normals = SpanOf(normals);
+    v.uvs = SpanOf(uvs);
+    v.indices = SpanOf(indices);
+    v.triangleMeshes = SpanOf(triangleMeshes);
+    v.spheres = SpanOf(spheres);
+    v.disks = SpanOf(disks);
+    v.shapes = SpanOf(shapes);
+    v.materials = SpanOf(materials);
+    v.lights = SpanOf(lights);
+    v.lightCdf = SpanOf(lightCdf);
+    v.infiniteLights = SpanOf(infiniteLights);
+    v.images = SpanOf(images);
+    v.texels = SpanOf(texels);
+    v.distributions2D = SpanOf(distributions2D);
+    v.distData = SpanOf(distData);
+    v.spectra = spectra.Tables();
+    RGBToSpectrumTableData t = SRGBToSpectrumTable();
+    v.rgbToSpecRes = t.res;
+    v.rgbToSpecZNodes = Span<Float>{t.zNodes, t.res};
+    v.rgbToSpecCoeffs = Span<Float>{t.coeffs, 3 * t.res * t.res * t.res * 3};
+    v.illuminantTable = TableD65;
+    v.camera = camera;
+    v.film = film;
+    v.filter = filter;
+    v.bounds = bounds;
+    return v;
+}
+
+namespace build {
+namespace {
+
+// Marks every parameter used (for directives Lucerna substitutes as a whole).
+void MarkAllUsed(const ParameterDictionary &p) {
+    for (const ParsedParameter &q : p.All()) q.lookedUp = true;
+}
+
+bool OneOf(const std::string &s, std::initializer_list<const char *> names) {
+    for (const char *n : names)
+        if (s == n) return true;
+    return false;
+}
+
+// ---- White balance (pbrt-v4's PixelSensor with sensorIllum = D(T), and WhiteBalance()) ----
+
+using Mat3 = std::array<std::array<double, 3>, 3>;
+
+Mat3 Mul3(const Mat3 &a, const Mat3 &b) {
+    Mat3 r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k) r[i][j] += a[i][k] * b[k][j];
+    return r;
+}
+
+Mat3 Inverse3(const Mat3 &m) {
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    Mat3 r;
+    r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) / det;
+    r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
+    r[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
+    r[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) / det;
+    r[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
+    r[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
+    r[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) / det;
+    r[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
+    r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
+    return r;
+}
+
+// Chromaticity of pbrt-v4's Spectra::D(T): CIE daylight for CCT >= 4000 K (the CIE xD(T), yD(x)
+// formulas), a blackbody below.
+std::array<double, 2> DaylightChromaticity(BuildContext &ctx, double T) {
+    double cct = T * 1.4388 / 1.4380;
+    if (cct < 4000) {
+        XYZ xyz = ctx.Registry().ToXYZ(ctx.Registry().Blackbody(Float(cct)));
+        double sum = double(xyz[0]) + xyz[1] + xyz[2];
+        return {xyz[0] / sum, xyz[1] / sum};
+    }
+    double x = cct <= 7000 ? -4.607e9 / (cct * cct * cct) + 2.9678e6 / (cct * cct) + 0.09911e3 / cct + 0.244063
+                           : -2.0064e9 / (cct * cct * cct) + 1.9018e6 / (cct * cct) + 0.24748e3 / cct + 0.23704;
+    return {x, -3 * x * x + 2.870 * x - 0.275};
+}
+
+// Bradford chromatic adaptation from white xy `src` to `dst` (pbrt-v4's WhiteBalance).
+Mat3 WhiteBalance(std::array<double, 2> src, std::array<double, 2> dst) {
+    const Mat3 lmsFromXYZ = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+    auto toXYZ = [](std::array<double, 2> xy) { return std::array<double, 3>{xy[0] / xy[1], 1.0, (1 - xy[0] - xy[1]) / xy[1]}; };
+    auto apply = [](const Mat3 &m, std::array<double, 3> v) {
+        return std::array<double, 3>{m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+                                     m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+                                     m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
+    };
+    std::array<double, 3> srcLMS = apply(lmsFromXYZ, toXYZ(src)), dstLMS = apply(lmsFromXYZ, toXYZ(dst));
+    Mat3 scale{};
+    for (int i = 0; i < 3; ++i) scale[i][i] = dstLMS[i] / srcLMS[i];
+    return Mul3(Inverse3(lmsFromXYZ), Mul3(scale, lmsFromXYZ));
+}
+
+// ---- Film, camera, filter, sampler, integrator ----
+
+Float ExposureTime(BuildContext &ctx) {
+    const CameraEntity &c = ctx.desc.camera;
+    Float open = Float(c.params.GetOneFloat("shutteropen", 0)), close = Float(c.params.GetOneFloat("shutterclose", 1));
+    if (close < open) {
+        ctx.diag.Warning(c.loc, "shutter close time < shutter open time; swapping them");
+        std::swap(open, close);
+    }
+    if (!(close - open > 0))
+        Fail(c.loc, "the specified camera shutter times imply that the shutter does not open (a black image would result)");
+    return close - open;
+}
+
+void BuildFilm(BuildContext &ctx, Float exposureTime) {
+    const SceneEntity &f = ctx.desc.film;
+    HostScene &s = ctx.scene;
+    const ParameterDictionary &p = f.params;
+    std::string name = f.name.empty() ? "rgb" : f.name;
+    if (name == "gbuffer" || name == "spectral") {
+        ctx.diag.Unsupported(f.loc, "Film " + Quoted(name), "writing the \"rgb\" film's image (same RGB channels)");
+        MarkAllUsed(p);
+    } else if (name != "rgb") {
+        Fail(f.loc, "unknown film type " + Quoted(name));
+    }
+    int xres = p.GetOneInt("xresolution", 1280), yres = p.GetOneInt("yresolution", 720);
+    if (ctx.opts.resX > 0 && ctx.opts.resY > 0) {
+        xres = ctx.opts.resX;
+        yres = ctx.opts.resY;
+    }
+    if (xres <= 0) Fail(ParamLoc(p, "xresolution", f.loc), "film resolution must be positive (xresolution " + std::to_string(xres) + ")");
+    if (yres <= 0) Fail(ParamLoc(p, "yresolution", f.loc), "film resolution must be positive (yresolution " + std::to_string(yres) + ")");
+    if (int64_t(xres) * yres > (int64_t(1) << 27))
+        Fail(ParamLoc(p, "xresolution", f.loc), "film resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
+                                                    " is too large (at most 2^27 pixels)");
+    s.settings.outputFilename = p.GetOneString("filename", "");
+    Float iso = Float(p.GetOneFloat("iso", 100));
+    Float whiteBalance = Float(p.GetOneFloat("whitebalance", 0));
+    std::string sensor = p.GetOneString("sensor", "cie1931");
+    Float maxComponent = Float(p.GetOneFloat("maxcomponentvalue", Infinity));
+    (void)p.GetOneBool("savefp16", true);
+    (void)p.GetOneFloat("diagonal", 35);
+    if (p.Has("cropwindow")) {
+        (void)p.GetFloatArray("cropwindow");
+        ctx.diag.Unsupported(ParamLoc(p, "cropwindow", f.loc), "Film \"cropwindow\"", "the full image is rendered");
+    }
+    if (p.Has("pixelbounds")) {
+        (void)p.GetIntArray("pixelbounds");
+        ctx.diag.Unsupported(ParamLoc(p, "pixelbounds", f.loc), "Film \"pixelbounds\"", "the full image is rendered");
+    }
+    if (sensor != "cie1931") {
+        ctx.diag.Unsupported(ParamLoc(p, "sensor", f.loc), "Film sensor " + Quoted(sensor), "using the CIE 1931 observer");
+        // pbrt-v4 white-balances real sensors to 6500 K by default; with the XYZ sensor that is
+        // close to the identity, so nothing more is done here.
+    }
+    if (!(iso > 0)) Fail(ParamLoc(p, "iso", f.loc), "\"iso\" must be positive");
+    FilmData &fd = s.film;
+    fd.width = xres;
+    fd.height = yres;
+    fd.imagingRatio = exposureTime * iso / 100;
+    fd.maxComponentValue = maxComponent > 0 ? maxComponent : Infinity;
+    Mat3 out;  // XYZ -> linear sRGB: column j is the image of the j-th unit XYZ vector
+    for (int j = 0; j < 3; ++j) {
+        RGB col = XYZToRGB(XYZ{Float(j == 0), Float(j == 1), Float(j == 2)});
+        for (int i = 0; i < 3; ++i) out[i][j] = col[i];
+    }
+    if (whiteBalance != 0) {
+        if (whiteBalance < 0) Fail(ParamLoc(p, "whitebalance", f.loc), "\"whitebalance\" must be a positive temperature");
+        // The sRGB white (xy of its D65 table, as pbrt-v4's RGBColorSpace::w).
+        out = Mul3(out, WhiteBalance(DaylightChromaticity(ctx, whiteBalance), {0.312717, 0.329031}));
+    }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) fd.xyzToOutput[i][j] = Float(out[i][j]);
+    p.ReportUnused(ctx.diag, "Film " + Quoted(name));
+}
+
+void BuildCamera(BuildContext &ctx) {
+    const CameraEntity &c = ctx.desc.camera;
+    HostScene &s = ctx.scene;
+    const ParameterDictionary &p = c.params;
+    std::string name = c.name.empty() ? "perspective" : c.name;
+    if (OneOf(name, {"orthographic", "realistic", "spherical"})) FailUnsupported(c.loc, "Camera " + Quoted(name));
+    if (name != "perspective") Fail(c.loc, "unknown camera type " + Quoted(name));
+    Float lensRadius = Float(p.GetOneFloat("lensradius", 0));
+    Float focalDistance = Float(p.GetOneFloat("focaldistance", 1e6));
+    Float frame = 0;
+    if (p.Has("frameaspectratio")) {
+        frame = Float(p.GetOneFloat("frameaspectratio", 1));
+        if (!(frame > 0)) Fail(ParamLoc(p, "frameaspectratio", c.loc), "\"frameaspectratio\" must be positive");
+    }
+    Float screen[4];
+    bool haveScreen = false;
+    if (p.Has("screenwindow")) {
+        std::vector<double> sw = p.GetFloatArray("screenwindow");
+        if (sw.size() != 4) Fail(ParamLoc(p, "screenwindow", c.loc), "\"screenwindow\" should have four values");
+        for (int i = 0; i < 4; ++i) screen[i] = Float(sw[i]);
+        if (!(screen[1] > screen[0]) || !(screen[3] > screen[2]))
+            Fail(ParamLoc(p, "screenwindow", c.loc), "\"screenwindow\" must have xmin < xmax and ymin < ymax");
+        haveScreen = true;
+    }
+    double fov = p.GetOneFloat("fov", 90);
+    if (!(fov > 0 && fov < 180))
+        Fail(ParamLoc(p, "fov", c.loc), "\"fov\" must be between 0 and 180 degrees (exclusive), got " + std::to_string(fov));
+    if (lensRadius < 0) Fail(ParamLoc(p, "lensradius", c.loc), "\"lensradius\" must not be negative");
+    if (lensRadius > 0 && !(focalDistance > 0)) Fail(ParamLoc(p, "focaldistance", c.loc), "\"focaldistance\" must be positive");
+    s.camera = MakePerspectiveCamera(c.worldFromCamera, s.film.width, s.film.height, Float(fov), lensRadius, focalDistance,
+                                     haveScreen ? screen : nullptr, frame);
+    s.stats.cameraType = name;
+    s.stats.fov = fov;
+    s.stats.cameraPosition = c.worldFromCamera.ApplyPoint(Vec3f(0, 0, 0));
+    Vec3f dir = c.worldFromCamera.ApplyVector(Vec3f(0, 0, 1));
+    if (LengthSquared(dir) > 0) s.stats.cameraDirection = Normalize(dir);
+    p.ReportUnused(ctx.diag, "Camera " + Quoted(name));
+}
+
+void BuildFilter(BuildContext &ctx) {
+    const SceneEntity &f = ctx.desc.filter;
+    HostScene &s = ctx.scene;
+    const ParameterDictionary &p = f.params;
+    std::string name = f.name.empty() ? "gaussian" : f.name;
+    if (name == "sinc") FailUnsupported(f.loc, "PixelFilter \"sinc\"");
+    if (!OneOf(name, {"box", "gaussian", "triangle", "mitchell"})) Fail(f.loc, "unknown filter type " + Quoted(name));
+    Float defRadius = name == "box" ? 0.5f : name == "gaussian" ? 1.5f : 2.f;
+    Float xr = Float(p.GetOneFloat("xradius", defRadius)), yr = Float(p.GetOneFloat("yradius", defRadius));
+    if (!(xr > 0)) Fail(ParamLoc(p, "xradius", f.loc), "filter radius must be positive");
+    if (!(yr > 0)) Fail(ParamLoc(p, "yradius", f.loc), "filter radius must be positive");
+    Float sigma = -1, B = NAN, C = NAN;
+    if (name == "gaussian") {
+        sigma = Float(p.GetOneFloat("sigma", 0.5));
+        if (!(sigma > 0)) Fail(ParamLoc(p, "sigma", f.loc), "gaussian \"sigma\" must be positive");
+    }
+    if (name == "mitchell") {
+        B = Float(p.GetOneFloat("B", 1.0 / 3));
+        C = Float(p.GetOneFloat("C", 1.0 / 3));
+    }
+    s.filter = MakeFilter(name, xr, yr, sigma, B, C);
+    BuildFilterDistribution(s.filter, s.distributions2D, s.distData);
+    s.stats.filterType = name;
+    p.ReportUnused(ctx.diag, "PixelFilter " + Quoted(name));
+}
+
+void BuildSampler(BuildContext &ctx) {
+    const SceneEntity &e = ctx.desc.sampler;
+    RenderSettings &rs = ctx.scene.settings;
+    const ParameterDictionary &p = e.params;
+    std::string name = e.name.empty() ? "zsobol" : e.name;
+    if (!OneOf(name, {"sobol", "zsobol", "paddedsobol", "independent", "halton", "pmj02bn", "stratified"}))
+        Fail(e.loc, "unknown sampler type " + Quoted(name));
+    rs.sampler = name;
+    if (name == "stratified") {
+        int xs = p.GetOneInt("xsamples", 4), ys = p.GetOneInt("ysamples", 4);
+        (void)p.GetOneBool("jitter", true);
+        if (xs <= 0 || ys <= 0) Fail(e.loc, "stratified sampler: \"xsamples\" and \"ysamples\" must be positive");
+        rs.spp = xs * ys;
+    } else {
+        rs.spp = p.GetOneInt("pixelsamples", 16);
+        if (rs.spp <= 0) Fail(ParamLoc(p, "pixelsamples", e.loc), "\"pixelsamples\" must be positive");
+    }
+    rs.seed = p.GetOneInt("seed", 0);
+    if (OneOf(name, {"sobol", "zsobol", "paddedsobol", "halton"})) (void)p.GetOneString("randomization", "");
+    p.ReportUnused(ctx.diag, "Sampler " + Quoted(name));
+}
+
+void BuildIntegrator(BuildContext &ctx) {
+    const SceneEntity &e = ctx.desc.integrator;
+    RenderSettings &rs = ctx.scene.settings;
+    const ParameterDictionary &p = e.params;
+    rs.integratorAsRead = e.name;
+    if (e.name.empty()) return;  // pbrt-v4's default "volpath": the same image as "path" without media
+    rs.maxDepth = p.GetOneInt("maxdepth", 5);
+    if (rs.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", e.loc), "\"maxdepth\" must not be negative");
+    if (e.name == "path") {
+        rs.integrator = "path";
+        rs.regularize = p.GetOneBool("regularize", false);
+        if (rs.regularize)
+            ctx.diag.Unsupported(ParamLoc(p, "regularize", e.loc), "pbrt-v4's \"bool regularize\" (BSDF roughening)",
+                                 "the unbiased path tracer is used");
+        (void)p.GetOneString("lightsampler", "bvh");  // sampling choice only: Lucerna samples lights by power
+    } else if (e.name == "regpath") {
+        rs.integrator = "regpath";
+        rs.regularize = true;
+        rs.regRadius = p.GetOneFloat("radius", -1);
+        rs.regLambda = p.GetOneFloat("lambda", 1.0 / 6);
+        rs.regAngle = p.GetOneFloat("angle", -1);
+        if (rs.regLambda < 0) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must not be negative");
+    } else if (OneOf(e.name, {"volpath", "bdpt", "mlt", "sppm", "lightpath", "simplepath", "simplevolpath", "randomwalk"})) {
+        ctx.diag.Unsupported(e.loc, "Integrator " + Quoted(e.name), "rendered with \"path\", which converges to the same image");
+        rs.integrator = "path";
+        MarkAllUsed(p);  // its other parameters (radius, photons, ...) have no "path" equivalent
+    } else if (OneOf(e.name, {"ambientocclusion", "aov", "function"})) {
+        FailUnsupported(e.loc, "Integrator " + Quoted(e.name));
+    } else {
+        Fail(e.loc, "unknown integrator " + Quoted(e.name));
+    }
+    p.ReportUnused(ctx.diag, "Integrator " + Quoted(e.name));
+}
+
+}  // namespace
+}  // namespace build
+
+std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics &diag, const BuildOptions &opts) {
+    using namespace build;
+    auto scene = std::make_unique<HostScene>();
+    BuildContext ctx{desc, diag, opts, *scene};
+
+    if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
+        FailUnsupported({}, "ColorSpace " + Quoted(desc.colorSpace));
+    for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
+
+    // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).
+    BuildFilter(ctx);
+    BuildFilm(ctx, ExposureTime(ctx));
+    BuildCamera(ctx);
+    BuildSampler(ctx);
+    BuildIntegrator(ctx);
+
+    if (!desc.media.empty())
+        FailUnsupported(desc.media.front().loc, "MakeNamedMedium " + Quoted(desc.media.front().name) + " (participating media)");
+
+    IndexTextures(ctx);
+    BuildMaterials(ctx);
+    BuildShapes(ctx);
+    BuildLights(ctx);
+    FinishLights(ctx);
+    return scene;
+}
+
+std::unique_ptr<HostScene> LoadScene(const std::string &filename, Diagnostics &diag, const BuildOptions &opts) {
+    SceneDescription desc = ParseSceneFile(filename, diag);
+    return BuildScene(desc, diag, opts);
+}
+
+}  // namespace lu

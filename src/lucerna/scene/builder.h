@@ -1,0 +1,85 @@
+// Lucerna scene builder: interprets a parsed pbrt-v4 SceneDescription into the render-ready
+// arrays of core/scene_data.h, with pbrt-v4's semantics for every parameter (after pbrt-v4's
+// scene.cpp and the Create() functions of shapes, materials, lights, textures, film and cameras).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lucerna/core/scene_data.h"
+#include "lucerna/scene/description.h"
+#include "lucerna/spectrum/registry.h"
+
+namespace lu {
+
+// Rendering options from the Integrator / Sampler / Film directives; the CLI may override them.
+struct RenderSettings {
+    std::string integrator = "path";    // "path" or "regpath" (others are substituted by "path")
+    std::string integratorAsRead;       // the Integrator directive's name ("" when absent)
+    int maxDepth = 5;
+    bool regularize = false;            // "bool regularize" of "path"; true for "regpath"
+    double regRadius = -1, regLambda = 1.0 / 6, regAngle = -1;  // "regpath": radius, lambda, angle (degrees)
+    std::string sampler = "zsobol";     // sobol, zsobol, independent, halton, pmj02bn, stratified, paddedsobol
+    int spp = 16;                       // "pixelsamples" (stratified: xsamples * ysamples)
+    int seed = 0;                       // Sampler "seed"
+    std::string outputFilename;         // Film "filename" ("" when absent)
+};
+
+// What `lucerna info` reports. Type names are pbrt-v4's ("trianglemesh", "conductor", ...).
+struct SceneStats {
+    std::map<std::string, int> shapesByType;     // Shape directives (instanced copies included)
+    std::map<std::string, int> lightsByType;     // LightSource types; "diffuse area" counts emitting primitives
+    std::map<std::string, int> materialsByType;  // every Material / MakeNamedMaterial, "interface" included
+    uint64_t triangles = 0;                      // after flattening instances and triangulating
+    int areaLightShapes = 0;                     // shapes carrying an AreaLightSource
+    int floatTextures = 0, spectrumTextures = 0;
+    int instanceDefinitions = 0, instanceUses = 0;
+    std::string cameraType = "perspective";
+    double fov = 90;                             // degrees, on the shorter image axis (pbrt-v4)
+    Vec3f cameraPosition, cameraDirection;       // render (= world) space
+    std::string filterType = "gaussian";
+};
+
+// Owns every array the SceneView spans point into.
+class HostScene {
+  public:
+    SceneView View() const;
+
+    RenderSettings settings;
+    SceneStats stats;
+    SpectrumRegistry spectra;
+    Bounds3f bounds;
+
+    std::vector<Vec3f> positions, normals;
+    std::vector<Vec2f> uvs;
+    std::vector<uint32_t> indices;
+    std::vector<TriangleMesh> triangleMeshes;
+    std::vector<Sphere> spheres;
+    std::vector<Disk> disks;
+    std::vector<Shape> shapes;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    std::vector<Float> lightCdf;
+    std::vector<uint32_t> infiniteLights;
+    std::vector<ImageData> images;
+    std::vector<Float> texels;
+    std::vector<Distribution2D> distributions2D;
+    std::vector<Float> distData;
+    CameraData camera;
+    FilmData film;
+    FilterData filter;
+};
+
+struct BuildOptions {
+    int resX = 0, resY = 0;   // --res override; 0: from the Film directive
+};
+
+// Throws SceneError (at the offending entity or parameter) for bad input and for unsupported
+// features that would change the picture; records the others in diag.
+std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics &diag, const BuildOptions &opts);
+// ParseSceneFile + BuildScene.
+std::unique_ptr<HostScene> LoadScene(const std::string &filename, Diagnostics &diag, const BuildOptions &opts);
+
+}  // namespace lu
