@@ -18,6 +18,7 @@ struct Chi2Case {
 void RunChi2(const Chi2Case &c, uint64_t seed) {
     Chi2Result r = Chi2TestBSDF(c.bsdf, c.wo, kSamples, seed);
     SCOPED_TRACE(c.name);
+    if (getenv("LU_VERBOSE")) printf("%s: %s mism=%ld\n", c.name, r.message.c_str(), r.mismatches);
     EXPECT_GT(r.pValue, Chi2Threshold()) << r.message;
     EXPECT_EQ(r.mismatches, 0) << r.firstMismatch;
     EXPECT_LE(r.integral, 1.0 + 1e-3) << r.message;
