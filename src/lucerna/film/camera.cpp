@@ -1,0 +1,63 @@
+// Lucerna: host construction of the perspective camera's raster-to-camera transform, as pbrt-v4's
+// ProjectiveCamera / PerspectiveCamera constructors (Perspective(fov, 1e-2, 1000)).
+#include "lucerna/film/camera.h"
+
+namespace lu {
+
+static Matrix4 ScaleMatrix(double x, double y, double z) {
+    Matrix4 m;
+    m.m[0][0] = Float(x);
+    m.m[1][1] = Float(y);
+    m.m[2][2] = Float(z);
+    return m;
+}
+
+static Matrix4 TranslateMatrix(double x, double y, double z) {
+    Matrix4 m;
+    m.m[0][3] = Float(x);
+    m.m[1][3] = Float(y);
+    m.m[2][3] = Float(z);
+    return m;
+}
+
+CameraData MakePerspectiveCamera(const Transform &renderFromCamera, int width, int height, Float fovDeg,
+                                 Float lensRadius, Float focalDistance, const Float *screenWindow,
+                                 Float frameAspectRatio) {
+    CameraData c;
+    c.renderFromCamera = renderFromCamera;
+    c.width = width;
+    c.height = height;
+    c.lensRadius = lensRadius;
+    c.focalDistance = focalDistance;
+
+    // Screen window.
+    Float frame = frameAspectRatio > 0 ? frameAspectRatio : Float(width) / Float(height);
+    Float sx0, sx1, sy0, sy1;
+    if (frame > 1) { sx0 = -frame; sx1 = frame; sy0 = -1; sy1 = 1; }
+    else { sx0 = -1; sx1 = 1; sy0 = -1 / frame; sy1 = 1 / frame; }
+    if (screenWindow) { sx0 = screenWindow[0]; sx1 = screenWindow[1]; sy0 = screenWindow[2]; sy1 = screenWindow[3]; }
+
+    // screenFromCamera = Scale(1/tan(fov/2), 1/tan(fov/2), 1) * Perspective(near, far).
+    const double n = 1e-2, f = 1000;
+    Matrix4 persp;
+    persp.m[2][2] = Float(f / (f - n));
+    persp.m[2][3] = Float(-f * n / (f - n));
+    persp.m[3][2] = 1;
+    persp.m[3][3] = 0;
+    double invTan = 1 / std::tan(double(Radians(fovDeg)) / 2);
+    Matrix4 screenFromCamera = Mul(ScaleMatrix(invTan, invTan, 1), persp);
+
+    // rasterFromScreen = Scale(w, -h, 1) * Scale(1/(x1-x0), 1/(y1-y0), 1) * Translate(-x0, -y1, 0).
+    Matrix4 rasterFromScreen = Mul(Mul(ScaleMatrix(width, -height, 1), ScaleMatrix(1.0 / (double(sx1) - sx0),
+                                                                                   1.0 / (double(sy1) - sy0), 1)),
+                                   TranslateMatrix(-sx0, -sy1, 0));
+    Matrix4 screenFromRaster, cameraFromScreen;
+    Inverse(rasterFromScreen, &screenFromRaster);
+    Inverse(screenFromCamera, &cameraFromScreen);
+    Matrix4 cameraFromRaster = Mul(cameraFromScreen, screenFromRaster);
+    Matrix4 rasterFromCamera = Mul(rasterFromScreen, screenFromCamera);
+    c.cameraFromRaster = Transform(cameraFromRaster, rasterFromCamera);
+    return c;
+}
+
+}  // namespace lu

@@ -1,0 +1,111 @@
+// Lucerna: the PCG32 random number generator (O'Neill 2014; XSH-RR output), host and device,
+// with the same seeding (SetSequence) and jump-ahead (Advance) as pbrt-v4's util/rng.h, so a
+// sequence index and offset give the same numbers as pbrt-v4.
+#pragma once
+
+#include "lucerna/sampling/hash.h"
+
+namespace lu {
+
+class RNG {
+  public:
+    static constexpr uint64_t DefaultState = 0x853c49e6748fea9bull;
+    static constexpr uint64_t DefaultStream = 0xda3e39cb94b95bdbull;
+    static constexpr uint64_t Mult = 0x5851f42d4c957f2dull;
+
+    LU_HD RNG() : state(DefaultState), inc(DefaultStream) {}
+    LU_HD RNG(uint64_t seqIndex, uint64_t offset) { SetSequence(seqIndex, offset); }
+    LU_HD explicit RNG(uint64_t seqIndex) { SetSequence(seqIndex); }
+
+    // Selects stream seqIndex (2^63 distinct streams) and a starting point given by seed.
+    LU_HD void SetSequence(uint64_t seqIndex, uint64_t seed);
+    LU_HD void SetSequence(uint64_t seqIndex) { SetSequence(seqIndex, MixBits(seqIndex)); }
+
+    // Uniform<uint32_t>: all 32-bit values; Uniform<uint64_t>: two draws; Uniform<float> and
+    // Uniform<double>: [0, 1), never 1.
+    template <typename T>
+    LU_HD T Uniform();
+
+    // Uniform integer in [0, bound) without modulo bias (bound > 0).
+    LU_HD uint32_t UniformBounded(uint32_t bound);
+
+    // Skips delta draws (negative delta goes back) in O(log delta) (Brown 1994).
+    LU_HD void Advance(int64_t idelta) {
+        uint64_t curMult = Mult, curPlus = inc, accMult = 1u, accPlus = 0u;
+        uint64_t delta = uint64_t(idelta);
+        while (delta > 0) {
+            if (delta & 1) {
+                accMult *= curMult;
+                accPlus = accPlus * curMult + curPlus;
+            }
+            curPlus = (curMult + 1) * curPlus;
+            curMult *= curMult;
+            delta /= 2;
+        }
+        state = accMult * state + accPlus;
+    }
+
+    // Number of draws from `other` to *this (same stream required).
+    LU_HD int64_t operator-(const RNG &other) const {
+        uint64_t curMult = Mult, curPlus = inc, curState = other.state;
+        uint64_t theBit = 1u, distance = 0u;
+        while (state != curState) {
+            if ((state & theBit) != (curState & theBit)) {
+                curState = curState * curMult + curPlus;
+                distance |= theBit;
+            }
+            theBit <<= 1;
+            curPlus = (curMult + 1ull) * curPlus;
+            curMult *= curMult;
+        }
+        return int64_t(distance);
+    }
+
+    LU_HD bool operator==(const RNG &o) const { return state == o.state && inc == o.inc; }
+
+  private:
+    uint64_t state, inc;
+};
+
+template <>
+LU_INLINE uint32_t RNG::Uniform<uint32_t>() {
+    uint64_t oldState = state;
+    state = oldState * Mult + inc;
+    uint32_t xorShifted = uint32_t(((oldState >> 18u) ^ oldState) >> 27u);
+    uint32_t rot = uint32_t(oldState >> 59u);
+    return (xorShifted >> rot) | (xorShifted << ((~rot + 1u) & 31));
+}
+
+template <>
+LU_INLINE uint64_t RNG::Uniform<uint64_t>() {
+    uint64_t v0 = Uniform<uint32_t>(), v1 = Uniform<uint32_t>();
+    return (v0 << 32) | v1;
+}
+
+template <>
+LU_INLINE float RNG::Uniform<float>() {
+    return Min<float>(OneMinusEpsilon, Uniform<uint32_t>() * 0x1p-32f);
+}
+
+template <>
+LU_INLINE double RNG::Uniform<double>() {
+    return Min<double>(0x1.fffffffffffffp-1, Uniform<uint64_t>() * 0x1p-64);
+}
+
+LU_INLINE void RNG::SetSequence(uint64_t seqIndex, uint64_t seed) {
+    state = 0u;
+    inc = (seqIndex << 1u) | 1u;
+    Uniform<uint32_t>();
+    state += seed;
+    Uniform<uint32_t>();
+}
+
+LU_INLINE uint32_t RNG::UniformBounded(uint32_t bound) {
+    uint32_t threshold = (~bound + 1u) % bound;
+    while (true) {
+        uint32_t r = Uniform<uint32_t>();
+        if (r >= threshold) return r % bound;
+    }
+}
+
+}  // namespace lu

@@ -1,0 +1,292 @@
+// Tests of the pixel samplers (sampler.h): uniformity of every dimension, per-pixel
+// stratification of the Sobol' kinds, determinism and order independence, indices past spp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "lucerna/sampling/sampler.h"
+#include "support/test_support.h"
+
+using namespace lu;
+
+namespace {
+
+struct Config {
+    const char *name;
+    const char *randomization;
+};
+
+const Config kConfigs[] = {{"independent", ""}, {"zsobol", "fastowen"}, {"zsobol", "owen"},
+                           {"zsobol", "permutedigits"}, {"paddedsobol", "fastowen"}, {"stratified", ""}};
+
+Sampler Make(const char *name, int spp, const char *randomization = "", int seed = 0, int w = 64, int h = 48) {
+    SamplerOptions o;
+    o.randomization = randomization;
+    std::string report;
+    return MakeSampler(name, spp, seed, w, h, o, &report);
+}
+
+// The draws of one pixel sample: 1D, 2D, 1D, 1D, 2D, 2D (dims 0..9).
+struct Draws {
+    float v[10];
+};
+Draws Draw(Sampler &s, int x, int y, int index) {
+    Draws d;
+    s.StartPixelSample(x, y, index);
+    d.v[0] = s.Get1D();
+    Vec2f a = s.Get2D();
+    d.v[1] = a.x; d.v[2] = a.y;
+    d.v[3] = s.Get1D();
+    d.v[4] = s.Get1D();
+    Vec2f b = s.Get2D();
+    d.v[5] = b.x; d.v[6] = b.y;
+    Vec2f c = s.GetPixel2D();
+    d.v[7] = c.x; d.v[8] = c.y;
+    d.v[9] = s.Get1D();
+    return d;
+}
+
+// Elementary-interval check: the n = 2^k points have exactly one point in every
+// 2^a x 2^(k-a) cell, for every a.
+bool IsNet(const std::vector<Vec2f> &pts, int k, std::string *why) {
+    int n = 1 << k;
+    for (int a = 0; a <= k; ++a) {
+        int nx = 1 << a, ny = 1 << (k - a);
+        std::vector<int> cnt(n, 0);
+        for (const Vec2f &p : pts) {
+            int ix = std::min(int(p.x * nx), nx - 1), iy = std::min(int(p.y * ny), ny - 1);
+            if (++cnt[iy * nx + ix] > 1) {
+                *why = "two points in one " + std::to_string(nx) + "x" + std::to_string(ny) + " cell";
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST(Sampler, EveryDimensionIsUniform) {
+    // 16x16 pixels x 16 spp = 4096 samples per dimension; 1D: 32 bins, 2D pairs: 8x8.
+    const int nConfigs = int(sizeof(kConfigs) / sizeof(kConfigs[0]));
+    const int nTests = nConfigs * (10 + 3);
+    const double alpha = 1 - std::pow(1 - 1e-4, 1.0 / nTests);  // Sidak
+    for (const Config &c : kConfigs) {
+        Sampler s = Make(c.name, 16, c.randomization, 3);
+        std::vector<std::vector<double>> h1(10, std::vector<double>(32, 0));
+        std::vector<std::vector<double>> h2(3, std::vector<double>(64, 0));
+        int n = 0;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int i = 0; i < 16; ++i) {
+                    Draws d = Draw(s, x, y, i);
+                    ++n;
+                    for (int k = 0; k < 10; ++k) {
+                        ASSERT_GE(d.v[k], 0.f);
+                        ASSERT_LT(d.v[k], 1.f);
+                        h1[k][int(d.v[k] * 32)] += 1;
+                    }
+                    const int pairs[3][2] = {{1, 2}, {5, 6}, {7, 8}};
+                    for (int p = 0; p < 3; ++p)
+                        h2[p][int(d.v[pairs[p][1]] * 8) * 8 + int(d.v[pairs[p][0]] * 8)] += 1;
+                }
+        for (int k = 0; k < 10; ++k) {
+            std::string msg;
+            double p = test::ChiSquarePValue(h1[k], std::vector<double>(32, n / 32.0), &msg);
+            EXPECT_GT(p, alpha) << c.name << "/" << c.randomization << " dim " << k << ": " << msg;
+        }
+        for (int k = 0; k < 3; ++k) {
+            std::string msg;
+            double p = test::ChiSquarePValue(h2[k], std::vector<double>(64, n / 64.0), &msg);
+            EXPECT_GT(p, alpha) << c.name << "/" << c.randomization << " pair " << k << ": " << msg;
+        }
+    }
+}
+
+TEST(Sampler, ZSobolPixelSamplesAreStratified) {
+    for (const char *rnd : {"none", "permutedigits", "fastowen", "owen"}) {
+        for (int k = 0; k <= 8; ++k) {
+            int spp = 1 << k;
+            Sampler s = Make("zsobol", spp, rnd, 11, 100, 70);
+            ASSERT_EQ(s.SamplesPerPixel(), spp);
+            for (int pixel = 0; pixel < 6; ++pixel) {
+                int x = (pixel * 37) % 100, y = (pixel * 23) % 70;
+                for (int dim : {0, 1, 2, 5, 9}) {
+                    std::vector<Vec2f> pts;
+                    std::vector<int> strata(spp, 0);
+                    for (int i = 0; i < spp; ++i) {
+                        s.StartPixelSample(x, y, i, dim);
+                        pts.push_back(s.Get2D());
+                        s.StartPixelSample(x, y, i, dim);
+                        strata[std::min(int(s.Get1D() * spp), spp - 1)]++;
+                    }
+                    std::string why;
+                    EXPECT_TRUE(IsNet(pts, k, &why)) << rnd << " spp " << spp << " pixel " << x << "," << y
+                                                     << " dim " << dim << ": " << why;
+                    for (int i = 0; i < spp; ++i)
+                        ASSERT_EQ(strata[i], 1) << rnd << " spp " << spp << " 1D stratum " << i << " dim " << dim;
+                }
+            }
+        }
+    }
+}
+
+TEST(Sampler, PaddedSobolAndStratifiedAreStratified) {
+    for (int k : {2, 4, 6}) {
+        int spp = 1 << k;
+        Sampler s = Make("paddedsobol", spp, "fastowen", 1);
+        std::vector<Vec2f> pts;
+        for (int i = 0; i < spp; ++i) {
+            s.StartPixelSample(5, 9, i, 4);
+            pts.push_back(s.Get2D());
+        }
+        std::string why;
+        EXPECT_TRUE(IsNet(pts, k, &why)) << "paddedsobol spp " << spp << ": " << why;
+    }
+    Sampler st = Make("stratified", 12, "", 2);
+    EXPECT_EQ(st.xPixelSamples * st.yPixelSamples, 12);
+    std::vector<int> c1(12, 0), c2(12, 0);
+    for (int i = 0; i < 12; ++i) {
+        st.StartPixelSample(3, 4, i, 2);
+        c1[int(st.Get1D() * 12)]++;
+        Vec2f u = st.Get2D();
+        c2[int(u.y * st.yPixelSamples) * st.xPixelSamples + int(u.x * st.xPixelSamples)]++;
+    }
+    for (int i = 0; i < 12; ++i) {
+        EXPECT_EQ(c1[i], 1);
+        EXPECT_EQ(c2[i], 1);
+    }
+}
+
+TEST(Sampler, DeterministicAndPixelDependent) {
+    for (const Config &c : kConfigs) {
+        Sampler a = Make(c.name, 16, c.randomization, 5), b = Make(c.name, 16, c.randomization, 5);
+        Sampler other = Make(c.name, 16, c.randomization, 6);
+        int samePixel = 0, sameSeed = 0, total = 0;
+        for (int i = 0; i < 16; ++i) {
+            Draws d1 = Draw(a, 7, 3, i), d2 = Draw(b, 7, 3, i), d3 = Draw(a, 8, 3, i), d4 = Draw(other, 7, 3, i);
+            for (int k = 0; k < 10; ++k) {
+                ASSERT_EQ(d1.v[k], d2.v[k]) << c.name;
+                samePixel += d1.v[k] == d3.v[k];
+                sameSeed += d1.v[k] == d4.v[k];
+                ++total;
+            }
+        }
+        EXPECT_LT(samePixel, total / 20) << c.name << ": neighbouring pixels get the same numbers";
+        EXPECT_LT(sameSeed, total / 20) << c.name << ": another seed gives the same numbers";
+    }
+}
+
+TEST(Sampler, IndependentOfCallOrder) {
+    for (const Config &c : kConfigs) {
+        Sampler s = Make(c.name, 8, c.randomization, 9);
+        // Reference: pixels in scanline order, samples in order.
+        std::vector<Draws> ref;
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x)
+                for (int i = 0; i < 8; ++i) ref.push_back(Draw(s, x, y, i));
+        // Shuffled order with a second sampler object (as another thread would).
+        std::vector<int> order(ref.size());
+        for (size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+        std::mt19937 g(1);
+        std::shuffle(order.begin(), order.end(), g);
+        Sampler t = Make(c.name, 8, c.randomization, 9);
+        for (int j : order) {
+            int x = (j / 8) % 4, y = j / 32, i = j % 8;
+            Draws d = Draw(t, x, y, i);
+            for (int k = 0; k < 10; ++k) ASSERT_EQ(d.v[k], ref[j].v[k]) << c.name;
+        }
+        // Starting at a dimension equals consuming the dimensions before it.
+        for (int i = 0; i < 8; ++i) {
+            Draws d = ref[size_t(2 * 32 + 1 * 8 + i)];  // pixel (1, 2)
+            s.StartPixelSample(1, 2, i, 3);
+            EXPECT_EQ(s.Get1D(), d.v[3]) << c.name;
+            s.StartPixelSample(1, 2, i, 5);
+            Vec2f u = s.Get2D();
+            EXPECT_EQ(u.x, d.v[5]) << c.name;
+            EXPECT_EQ(u.y, d.v[6]) << c.name;
+            EXPECT_EQ(s.dimension, 7);
+        }
+    }
+}
+
+TEST(Sampler, IndicesPastSamplesPerPixel) {
+    for (const Config &c : kConfigs) {
+        Sampler s = Make(c.name, 16, c.randomization, 4);
+        // Each further block of 16 (pass) is again stratified (Sobol' kinds), differs from pass 0,
+        // and is deterministic.
+        std::vector<Vec2f> pass0, pass1;
+        for (int i = 0; i < 16; ++i) {
+            s.StartPixelSample(2, 2, i, 1);
+            pass0.push_back(s.Get2D());
+            s.StartPixelSample(2, 2, 16 + i, 1);
+            pass1.push_back(s.Get2D());
+            s.StartPixelSample(2, 2, 16 + i, 1);
+            Vec2f again = s.Get2D();
+            EXPECT_EQ(again.x, pass1.back().x);
+            EXPECT_EQ(again.y, pass1.back().y);
+            EXPECT_GE(pass1.back().x, 0.f);
+            EXPECT_LT(pass1.back().x, 1.f);
+        }
+        int same = 0;
+        for (int i = 0; i < 16; ++i) same += pass0[i].x == pass1[i].x;
+        EXPECT_LT(same, 3) << c.name;
+        if (std::string(c.name) != "independent" && std::string(c.name) != "stratified") {
+            std::string why;
+            EXPECT_TRUE(IsNet(pass1, 4, &why)) << c.name << ": " << why;
+        }
+    }
+    // Uniformity over many passes of one pixel (progressive rendering of a single pixel).
+    Sampler z = Make("zsobol", 4, "fastowen", 0);
+    std::vector<double> h(32, 0);
+    const int n = 8192;
+    for (int i = 0; i < n; ++i) {
+        z.StartPixelSample(1, 1, i, 2);
+        h[int(z.Get1D() * 32)] += 1;
+    }
+    std::string msg;
+    EXPECT_GT(test::ChiSquarePValue(h, std::vector<double>(32, n / 32.0), &msg), 1e-4) << msg;
+    // "none" randomization still gives new samples past spp.
+    Sampler none = Make("zsobol", 4, "none", 0);
+    none.StartPixelSample(0, 0, 1, 0);
+    float a = none.Get1D();
+    none.StartPixelSample(0, 0, 5, 0);
+    EXPECT_NE(a, none.Get1D());
+}
+
+TEST(Sampler, MakeSamplerNamesAndReports) {
+    std::string report;
+    Sampler s = MakeSampler("zsobol", 6, 0, 32, 32, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
+    EXPECT_EQ(s.SamplesPerPixel(), 4);
+    EXPECT_NE(report.find("rounded down"), std::string::npos);
+    report.clear();
+    s = MakeSampler("sobol", 64, 0, 32, 32, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
+    EXPECT_EQ(s.SamplesPerPixel(), 64);
+    EXPECT_NE(report.find("sobol"), std::string::npos);
+    report.clear();
+    s = MakeSampler("bogus", 6, 0, 32, 32, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
+    EXPECT_EQ(s.SamplesPerPixel(), 6);  // a fallback keeps the requested count
+    EXPECT_NE(report.find("unknown sampler"), std::string::npos);
+    report.clear();
+    s = MakeSampler("independent", 7, 3, 32, 32, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::Independent);
+    EXPECT_EQ(s.SamplesPerPixel(), 7);
+    EXPECT_TRUE(report.empty());
+    SamplerOptions o;
+    o.xSamples = 2;
+    o.ySamples = 3;
+    s = MakeSampler("stratified", 6, 0, 8, 8, o, &report);
+    EXPECT_EQ(s.xPixelSamples, 2);
+    EXPECT_EQ(s.yPixelSamples, 3);
+    s = MakeSampler("stratified", 32, 0, 8, 8, {}, &report);
+    EXPECT_EQ(s.xPixelSamples * s.yPixelSamples, 32);
+    o = {};
+    o.randomization = "owen";
+    s = MakeSampler("zsobol", 16, 0, 8, 8, o, &report);
+    EXPECT_EQ(s.randomize, RandomizeStrategy::Owen);
+}
