@@ -226,3 +226,46 @@ TEST(SpectrumRegistry, NamedMeasured) {
 
 }  // namespace
 }  // namespace lu
+
+namespace lu {
+namespace {
+
+TEST(RGBToSpectrumTable, EmbeddedTable) {
+    RGBToSpectrumTableData t = SRGBToSpectrumTable();
+    ASSERT_EQ(t.res, 64u);
+    EXPECT_EQ(t.zNodes[0], 0.f);
+    EXPECT_EQ(t.zNodes[63], 1.f);
+    for (uint32_t k = 1; k < t.res; ++k) EXPECT_LT(t.zNodes[k - 1], t.zNodes[k]);
+    // smoothstep(smoothstep(k / 63)) node spacing.
+    auto ss = [](float x) { return x * x * (3 - 2 * x); };
+    EXPECT_FLOAT_EQ(t.zNodes[21], ss(ss(21.f / 63.f)));
+    size_t n = size_t(3) * t.res * t.res * t.res * 3;
+    for (size_t i = 0; i < n; ++i) ASSERT_TRUE(std::isfinite(t.coeffs[i])) << i;
+}
+
+// Saturated and dark colors: the fitted reflectance still reproduces the color reasonably and
+// stays in [0, 1]; the lookup is continuous across the max-component boundary.
+TEST(RGBToSpectrumTable, HardColorsAndContinuity) {
+    SpectrumRegistry reg;
+    RGBToSpectrumTableData t = SRGBToSpectrumTable();
+    auto xyzOf = [&](const Spectrum &s) {
+        double xyz[3] = {0, 0, 0};
+        const Float *d65 = reg.Tables().data + TableD65 * TabulatedSpectrumSize;
+        for (int i = 0; i < TabulatedSpectrumSize; ++i)
+            for (int c = 0; c < 3; ++c)
+                xyz[c] += reg.Tables().data[c * TabulatedSpectrumSize + i] * reg.Eval(s, LambdaMin + i) * d65[i];
+        return XYZToRGB({Float(xyz[0] / CIE_Y_integral), Float(xyz[1] / CIE_Y_integral), Float(xyz[2] / CIE_Y_integral)});
+    };
+    for (RGB rgb : {RGB{0.9f, 0.1f, 0.1f}, RGB{0.1f, 0.8f, 0.1f}, RGB{0.05f, 0.05f, 0.7f}, RGB{0.01f, 0.02f, 0.005f}}) {
+        RGB back = xyzOf(reg.FromRGB(rgb, SpectrumType::Albedo));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(back[c], rgb[c], 0.02) << c;
+    }
+    Float a[3], b[3];
+    RGBToSigmoidCoeffs(t.coeffs, t.zNodes, t.res, 0.6f, 0.6f - 1e-6f, 0.3f, a);
+    RGBToSigmoidCoeffs(t.coeffs, t.zNodes, t.res, 0.6f - 1e-6f, 0.6f, 0.3f, b);
+    for (Float lambda : {420.f, 550.f, 680.f})
+        EXPECT_NEAR(SigmoidPolynomial(a, lambda), SigmoidPolynomial(b, lambda), 1e-3);
+}
+
+}  // namespace
+}  // namespace lu

@@ -1,0 +1,122 @@
+// Tests of visible-wavelength sampling and the sensor (color.h) Monte Carlo estimator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "lucerna/spectrum/color.h"
+#include "lucerna/spectrum/registry.h"
+#include "support/test_support.h"
+
+namespace lu {
+namespace {
+
+double IntegratePDF(double a, double b) {
+    const int n = 200;  // Simpson
+    double h = (b - a) / n, s = VisibleWavelengthsPDF(Float(a)) + VisibleWavelengthsPDF(Float(b));
+    for (int i = 1; i < n; ++i) s += (i % 2 ? 4 : 2) * VisibleWavelengthsPDF(Float(a + i * h));
+    return s * h / 3;
+}
+
+TEST(WavelengthSampling, PDFNormalized) { EXPECT_NEAR(IntegratePDF(LambdaMin, LambdaMax), 1.0, 1e-4); }
+
+TEST(WavelengthSampling, ChiSquareAgainstPDF) {
+    const int bins = 94, n = 200000;  // 5 nm bins
+    std::vector<double> observed(bins, 0), expected(bins);
+    for (int b = 0; b < bins; ++b) expected[b] = n * IntegratePDF(LambdaMin + 5.0 * b, LambdaMin + 5.0 * (b + 1));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    for (int i = 0; i < n; ++i) {
+        SampledWavelengths w = SampledWavelengths::SampleVisible(u(rng));
+        int b = int((w.lambda[0] - LambdaMin) / 5);
+        ASSERT_GE(w.lambda[0], LambdaMin - 1e-3f);
+        ASSERT_LE(w.lambda[0], LambdaMax + 1e-3f);
+        observed[Clamp(b, 0, bins - 1)] += 1;
+        ASSERT_NEAR(w.pdf[0], VisibleWavelengthsPDF(w.lambda[0]), 1e-9);
+    }
+    std::string msg;
+    double p = test::ChiSquarePValue(observed, expected, &msg);
+    EXPECT_GT(p, 1e-4) << msg;
+}
+
+TEST(WavelengthSampling, Stratified) {
+    SampledWavelengths w = SampledWavelengths::SampleVisible(0.1f);
+    for (int i = 0; i < NSpectrumSamples; ++i) {
+        Float up = 0.1f + Float(i) / NSpectrumSamples;
+        EXPECT_FLOAT_EQ(w.lambda[i], SampleVisibleWavelength(up > 1 ? up - 1 : up));
+    }
+}
+
+TEST(Color, DenseNearestLookup) {
+    SpectrumRegistry reg;
+    const Float *y = reg.Tables().data + TableCIE_Y * TabulatedSpectrumSize;
+    EXPECT_EQ(LookupDenseNearest(y, 555.4f), y[555 - 360]);
+    EXPECT_EQ(LookupDenseNearest(y, 555.6f), y[556 - 360]);
+    EXPECT_EQ(LookupDenseNearest(y, 359.4f), 0.f);
+    EXPECT_EQ(LookupDenseNearest(y, 830.4f), y[470]);
+    EXPECT_EQ(LookupDenseNearest(y, 830.6f), 0.f);
+}
+
+// The sensor estimator with visible-importance wavelengths converges to the XYZ of a smooth
+// spectrum (sum over 1 nm of cmf * S, pbrt-v4's InnerProduct).
+TEST(Color, SensorXYZConverges) {
+    SpectrumRegistry reg;
+    Spectrum s = reg.FromRGB({0.8f, 0.35f, 0.1f}, SpectrumType::Illuminant);
+    s.scale /= reg.ToPhotometric(s);
+    SpectrumTables tab = reg.Tables();
+    double exact[3] = {0, 0, 0};
+    for (int i = 0; i < TabulatedSpectrumSize; ++i)
+        for (int c = 0; c < 3; ++c) exact[c] += tab.data[c * TabulatedSpectrumSize + i] * reg.Eval(s, LambdaMin + i);
+
+    const int n = 100000;
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k) {
+        SampledWavelengths w = SampledWavelengths::SampleVisible(u(rng));
+        Float xyz[3];
+        SensorXYZ(SampleSpectrum(s, w, tab), w, tab, 1.f, xyz);
+        for (int c = 0; c < 3; ++c) {
+            sum[c] += xyz[c];
+            sum2[c] += double(xyz[c]) * xyz[c];
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        double mean = sum[c] / n, var = sum2[c] / n - mean * mean, se = std::sqrt(var / n);
+        // 5 standard errors plus the tiny bias of nearest-nm lookups vs. the 1 nm sum.
+        EXPECT_NEAR(mean, exact[c], 5 * se + 2e-3 * exact[c]) << "channel " << c << " se " << se;
+        EXPECT_LT(se, 0.01 * exact[c]);
+    }
+    // And imagingRatio scales linearly; terminated secondaries still count in the mean.
+    SampledWavelengths w = SampledWavelengths::SampleVisible(0.3f);
+    Float a[3], b[3];
+    SensorXYZ(SampleSpectrum(s, w, tab), w, tab, 1.f, a);
+    SensorXYZ(SampleSpectrum(s, w, tab), w, tab, 2.5f, b);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b[c], 2.5f * a[c], 1e-5f * std::abs(a[c]) + 1e-7f);
+    w.TerminateSecondary();
+    SensorXYZ(SampleSpectrum(s, w, tab), w, tab, 1.f, b);
+    Float v = EvalSpectrum(s, w.lambda[0], tab) / w.pdf[0];
+    EXPECT_NEAR(b[1], LookupDenseNearest(tab.data + TabulatedSpectrumSize, w.lambda[0]) * v / NSpectrumSamples,
+                1e-5f * std::abs(b[1]) + 1e-7f);
+}
+
+// pbrt-v4's headline invariant: an rgb (1,1,1) area light, scaled by 1/SpectrumToPhotometric,
+// seen directly renders as sRGB (1,1,1).
+TEST(Color, WhiteLightRendersWhite) {
+    SpectrumRegistry reg;
+    Spectrum L = reg.FromRGB({1.f, 1.f, 1.f}, SpectrumType::Illuminant);
+    L.scale /= reg.ToPhotometric(L);
+    SpectrumTables tab = reg.Tables();
+    const int n = 1 << 16;
+    double rgb[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k) {  // stratified primary samples
+        SampledWavelengths w = SampledWavelengths::SampleVisible((k + 0.5f) / n);
+        Float out[3];
+        SensorLinearSRGB(SampleSpectrum(L, w, tab), w, tab, 1.f, out);
+        for (int c = 0; c < 3; ++c) rgb[c] += out[c];
+    }
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(rgb[c] / n, 1.0, 2e-3) << c;
+}
+
+}  // namespace
+}  // namespace lu
