@@ -1,0 +1,184 @@
+// Lucerna: light sampling and emission for point, spot, distant, diffuse area, uniform and image
+// infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
+// with shape sampling in shape_sampling.h and the power-based light selection in light_sampler.h.
+#pragma once
+
+#include "lucerna/lights/equal_area.h"
+#include "lucerna/lights/rgb_illuminant.h"
+#include "lucerna/lights/shape_sampling.h"
+#include "lucerna/sampling/distribution.h"
+
+namespace lu {
+
+// An incident-radiance sample from one light at the reference point.
+struct LightLiSample {
+    SampledSpectrum L;             // radiance arriving along -wi (intensity / r^2 for point and spot)
+    Vec3f wi;                      // unit, from the reference point towards the light
+    Float pdf = 0;                 // solid angle at ctx.p (pdfW); 1 for delta lights
+    Vec3f pLight;                  // the sampled light point (infinite and distant: ctx.p + 2 R wi)
+    Vec3f nLight;                  // geometric normal at pLight (area lights), else (0,0,0)
+    Float distance = Infinity;     // shadow-ray length to pLight; Infinity for distant/infinite
+    bool isDelta = false;
+};
+
+LU_INLINE bool IsDeltaLight(const Light &l) {
+    return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant;
+}
+
+LU_INLINE bool IsInfiniteLight(const Light &l) {
+    return l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite;
+}
+
+// pbrt-v4's SmoothStep: 0 below a, 1 above b, Hermite in between (a == b: a step at a).
+LU_INLINE Float SmoothStep(Float x, Float a, Float b) {
+    if (a == b) return x < a ? 0 : 1;
+    Float t = Clamp((x - a) / (b - a), Float(0), Float(1));
+    return t * t * (3 - 2 * t);
+}
+
+// Spot light falloff for a unit direction wLight in light space (+z is the spot axis).
+LU_INLINE Float SpotFalloff(const Light &l, const Vec3f &wLight) {
+    return SmoothStep(wLight.z, l.cosFalloffEnd, l.cosFalloffStart);
+}
+
+// Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
+// emit only on the side n points to.
+LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f p, Vec3f n, Vec2f uv, Vec3f w,
+                                     const SampledWavelengths &lambda) {
+    if (l.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
+    if (!l.twoSided && Dot(n, w) < 0) return SampledSpectrum(0);
+    return SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+}
+
+// ---- Image infinite light ----
+
+// Texel (x, y) of an RGB(A) or one-channel image as RGB.
+LU_INLINE void ImageRGB(const SceneView &s, const ImageData &im, int x, int y, Float rgb[3]) {
+    const Float *t = s.texels.ptr + im.offset + (uint64_t(y) * im.width + x) * im.channels;
+    for (int c = 0; c < 3; ++c) rgb[c] = t[im.channels >= 3 ? c : 0];
+}
+
+// Emitted radiance of an image infinite light at equal-area image coordinates uv (nearest texel,
+// octahedral wrap), as pbrt-v4's ImageInfiniteLight::ImageLe.
+LU_INLINE SampledSpectrum ImageInfiniteLe(const Light &l, const SceneView &s, Vec2f uv,
+                                          const SampledWavelengths &lambda) {
+    const ImageData &im = s.images[l.image];
+    int x = int(uv.x * Float(im.width)), y = int(uv.y * Float(im.height));
+    WrapOctahedral(&x, &y, int(im.width), int(im.height));
+    Float rgb[3];
+    ImageRGB(s, im, x, y, rgb);
+    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+}
+
+// Radiance arriving along an escaped ray with unit direction dir, from an infinite light.
+LU_INLINE SampledSpectrum InfiniteLightLe(const Light &l, const SceneView &s, Vec3f dir,
+                                          const SampledWavelengths &lambda) {
+    if (l.kind == LightKind::UniformInfinite) return SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+    if (l.kind == LightKind::ImageInfinite) {
+        Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(dir));
+        return ImageInfiniteLe(l, s, EqualAreaSphereToSquare(wLight), lambda);
+    }
+    return SampledSpectrum(0);
+}
+
+// The two distributions of an image infinite light: l.distribution is pbrt-v4's plain one, and
+// l.distribution + 1 the MIS-compensated one (see BuildImageInfiniteDistributions).
+LU_INLINE const Distribution2D &ImageLightDistribution(const Light &l, const SceneView &s, bool allowIncompletePDF) {
+    return s.distributions2D[l.distribution + (allowIncompletePDF ? 1 : 0)];
+}
+
+// ---- SampleLi / PDF_Li ----
+
+// Samples incident radiance from light l at ctx. Returns false when no sample was produced (the
+// caller adds nothing). allowIncompletePDF selects pbrt-v4's MIS-aware sampling for infinite
+// lights (uniform infinite: no light sample; image: the compensated distribution); pass the same
+// value to PDF_Li. pbrt-v4's PathIntegrator passes true.
+LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleContext &ctx, Vec2f u,
+                        const SampledWavelengths &lambda, LightLiSample *ls, bool allowIncompletePDF = false) {
+    *ls = LightLiSample();
+    switch (l.kind) {
+    case LightKind::Point:
+    case LightKind::Spot: {
+        Vec3f d = l.position - ctx.p;
+        Float d2 = LengthSquared(d);
+        if (d2 == 0) return false;
+        ls->wi = d / std::sqrt(d2);
+        SampledSpectrum I = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+        if (l.kind == LightKind::Spot) {
+            Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi));
+            I *= SpotFalloff(l, wLight);
+        }
+        ls->L = I / d2;
+        ls->pdf = 1;
+        ls->pLight = l.position;
+        ls->distance = std::sqrt(d2);
+        ls->isDelta = true;
+        return !ls->L.IsBlack();
+    }
+    case LightKind::Distant: {
+        ls->wi = Normalize(l.direction);
+        ls->L = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+        ls->pdf = 1;
+        ls->pLight = ctx.p + ls->wi * (2 * l.sceneRadius);
+        ls->isDelta = true;
+        return !ls->L.IsBlack();
+    }
+    case LightKind::DiffuseArea: {
+        const Shape &shape = s.shapes[l.shape];
+        ShapeSample ss;
+        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss) || !(ss.pdf > 0)) return false;
+        Vec3f d = ss.p - ctx.p;
+        Float dist = Length(d);
+        if (dist == 0) return false;
+        ls->wi = d / dist;
+        ls->L = AreaLightL(l, s, ss.p, ss.n, ss.uv, -ls->wi, lambda);
+        if (ls->L.IsBlack()) return false;
+        ls->pdf = ss.pdf;
+        ls->pLight = ss.p;
+        ls->nLight = ss.n;
+        ls->distance = dist;
+        return true;
+    }
+    case LightKind::UniformInfinite: {
+        if (allowIncompletePDF) return false;
+        ls->wi = SampleUniformSphere(u);
+        ls->pdf = UniformSpherePDF();
+        ls->L = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+        ls->pLight = ctx.p + ls->wi * (2 * l.sceneRadius);
+        return !ls->L.IsBlack();
+    }
+    case LightKind::ImageInfinite: {
+        Float mapPDF = 0;
+        Vec2f uv = SampleDistribution2D(s, ImageLightDistribution(l, s, allowIncompletePDF), u, &mapPDF);
+        if (mapPDF == 0) return false;
+        Vec3f wLight = EqualAreaSquareToSphere(uv);
+        ls->wi = Normalize(l.renderFromLight.ApplyVector(wLight));
+        ls->pdf = mapPDF / (4 * Pi);  // the equal-area map has constant Jacobian 4 pi
+        ls->L = ImageInfiniteLe(l, s, uv, lambda);
+        ls->pLight = ctx.p + ls->wi * (2 * l.sceneRadius);
+        return !ls->L.IsBlack();
+    }
+    }
+    return false;
+}
+
+// Solid-angle pdf at ctx.p that SampleLi returns direction wi (unit). For area lights, pLight is
+// where wi hits the light and nLight its geometric normal there (found by the caller's ray);
+// infinite lights ignore them. 0 for delta lights.
+LU_INLINE Float PDF_Li(const Light &l, const SceneView &s, const LightSampleContext &ctx, Vec3f wi, Vec3f pLight,
+                       Vec3f nLight, bool allowIncompletePDF = false) {
+    switch (l.kind) {
+    case LightKind::DiffuseArea: return ShapePDF(s, s.shapes[l.shape], l.primitive, ctx, wi, pLight, nLight);
+    case LightKind::UniformInfinite: return allowIncompletePDF ? 0 : UniformSpherePDF();
+    case LightKind::ImageInfinite: {
+        Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(wi));
+        Vec2f uv = EqualAreaSphereToSquare(wLight);
+        return Distribution2DPDF(s, ImageLightDistribution(l, s, allowIncompletePDF), uv) / (4 * Pi);
+    }
+    default: return 0;
+    }
+}
+
+}  // namespace lu
+
+#include "lucerna/lights/light_sampler.h"

@@ -1,0 +1,391 @@
+// Lucerna: sampling points on emitting shapes as seen from a reference point, with solid-angle
+// pdfs (host and device). Follows pbrt-v4's Triangle/Sphere/Disk::Sample(ctx, u) and PDF(ctx, wi):
+// spherical-triangle sampling (Arvo 1995) with the bilinear cos-warp, cone sampling of spheres,
+// area sampling of disks; the spherical-triangle helpers after pbrt-v4's sampling.cpp.
+#pragma once
+
+#include "lucerna/core/scene_data.h"
+#include "lucerna/sampling/warp.h"
+
+namespace lu {
+
+// Where light is sampled from: p, and the geometric and shading normals of the surface there
+// ((0,0,0) when not on a surface).
+struct LightSampleContext {
+    Vec3f p, n, ns;
+};
+
+// A sampled point on a shape: position, oriented geometric normal (pbrt-v4's conventions), uv,
+// and the pdf w.r.t. solid angle at the reference point.
+struct ShapeSample {
+    Vec3f p, n;
+    Vec2f uv;
+    Float pdf = 0;
+};
+
+// ---- Spherical geometry helpers ----
+
+// Angle between unit vectors, accurate near 0 and pi.
+LU_INLINE Float AngleBetween(const Vec3f &a, const Vec3f &b) {
+    if (Dot(a, b) < 0) return Pi - 2 * SafeASin(Length(a + b) / 2);
+    return 2 * SafeASin(Length(b - a) / 2);
+}
+
+// v minus its projection on the unit vector w.
+LU_INLINE Vec3f GramSchmidt(const Vec3f &v, const Vec3f &w) { return v - w * Dot(v, w); }
+
+// Solid angle of the spherical triangle with unit vertices a, b, c (Van Oosterom & Strackee).
+LU_INLINE Float SphericalTriangleArea(const Vec3f &a, const Vec3f &b, const Vec3f &c) {
+    return std::abs(2 * std::atan2(Dot(a, Cross(b, c)), 1 + Dot(a, b) + Dot(a, c) + Dot(b, c)));
+}
+
+// Bilinear density on [0,1]^2 with corner weights w = {f(0,0), f(1,0), f(0,1), f(1,1)}.
+LU_INLINE Float BilinearPDF(Vec2f p, const Float w[4]) {
+    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) return 0;
+    Float sum = w[0] + w[1] + w[2] + w[3];
+    if (sum == 0) return 1;
+    return 4 * ((1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] + p.x * p.y * w[3]) / sum;
+}
+
+// Samples the bilinear density: y from the marginal, then x from the conditional (both linear).
+LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
+    Vec2f p;
+    p.y = SampleLinear(u.y, w[0] + w[1], w[2] + w[3]);
+    p.x = SampleLinear(u.x, Lerp(p.y, w[0], w[2]), Lerp(p.y, w[1], w[3]));
+    return p;
+}
+
+// Uniform sampling of the solid angle subtended by triangle v from p (Arvo 1995). Returns the
+// barycentrics of the sampled point; *pdf = 1 / solid angle, or 0 for degenerate triangles.
+LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u, Float b[3], Float *pdf) {
+    *pdf = 0;
+    b[0] = b[1] = b[2] = Float(1) / 3;
+    Vec3f a = v[0] - p, bb = v[1] - p, c = v[2] - p;
+    if (LengthSquared(a) == 0 || LengthSquared(bb) == 0 || LengthSquared(c) == 0) return;
+    a = Normalize(a); bb = Normalize(bb); c = Normalize(c);
+    Vec3f nab = Cross(a, bb), nbc = Cross(bb, c), nca = Cross(c, a);
+    if (LengthSquared(nab) == 0 || LengthSquared(nbc) == 0 || LengthSquared(nca) == 0) return;
+    nab = Normalize(nab); nbc = Normalize(nbc); nca = Normalize(nca);
+    // Interior angles at the vertices; the area is their sum minus pi.
+    Float alpha = AngleBetween(nab, -nca), beta = AngleBetween(nbc, -nab), gamma = AngleBetween(nca, -nbc);
+    Float areaPi = alpha + beta + gamma;
+    Float area = areaPi - Pi;
+    if (!(area > 0)) return;
+    *pdf = 1 / area;
+    // Sub-triangle area A' = u0 * A determines the point c' on the arc from a to c.
+    Float apPi = Lerp(u.x, Pi, areaPi);
+    double cosA = std::cos(double(alpha)), sinA = std::sin(double(alpha));
+    double sinAp = std::sin(double(apPi)), cosAp = std::cos(double(apPi));
+    double sinPhi = -sinAp * cosA + cosAp * sinA;
+    double cosPhi = -cosAp * cosA - sinAp * sinA;
+    double k1 = cosPhi - cosA;
+    double k2 = sinPhi + sinA * double(Dot(a, bb));
+    double cosBp = ((k2 * cosPhi - k1 * sinPhi) * cosA - k2) / ((k2 * sinPhi + k1 * cosPhi) * sinA);
+    if (cosBp != cosBp) cosBp = 1;  // triangle covering (nearly) a hemisphere
+    cosBp = cosBp < -1 ? -1 : (cosBp > 1 ? 1 : cosBp);
+    Float sinBp = SafeSqrt(1 - Float(cosBp * cosBp));
+    Vec3f cp = a * Float(cosBp) + Normalize(GramSchmidt(c, a)) * sinBp;
+    // Uniform in cos along the arc from b to c'.
+    Float cosTheta = 1 - u.y * (1 - Dot(cp, bb));
+    Float sinTheta = SafeSqrt(1 - cosTheta * cosTheta);
+    Vec3f gs = GramSchmidt(cp, bb);
+    Vec3f w = bb * cosTheta + (LengthSquared(gs) > 0 ? Normalize(gs) : Vec3f()) * sinTheta;
+    // Barycentrics of the ray (p, w) against the planar triangle (Moller-Trumbore).
+    Vec3f e1 = v[1] - v[0], e2 = v[2] - v[0];
+    Vec3f s1 = Cross(w, e2);
+    Float divisor = Dot(s1, e1);
+    if (divisor == 0) return;
+    Float inv = 1 / divisor;
+    Vec3f s = p - v[0];
+    Float b1 = Clamp(Dot(s, s1) * inv, Float(0), Float(1));
+    Float b2 = Clamp(Dot(w, Cross(s, e1)) * inv, Float(0), Float(1));
+    Float sum = b1 + b2;
+    if (sum > 1) { b1 /= sum; b2 /= sum; }
+    b[0] = 1 - b1 - b2; b[1] = b1; b[2] = b2;
+}
+
+// The sample u that SampleSphericalTriangle maps to direction w (unit) from p.
+LU_INLINE Vec2f InvertSphericalTriangleSample(const Vec3f v[3], const Vec3f &p, const Vec3f &w) {
+    Vec3f a = Normalize(v[0] - p), b = Normalize(v[1] - p), c = Normalize(v[2] - p);
+    Vec3f nab = Cross(a, b), nbc = Cross(b, c), nca = Cross(c, a);
+    if (LengthSquared(nab) == 0 || LengthSquared(nbc) == 0 || LengthSquared(nca) == 0) return {0.5f, 0.5f};
+    nab = Normalize(nab); nbc = Normalize(nbc); nca = Normalize(nca);
+    Float alpha = AngleBetween(nab, -nca), beta = AngleBetween(nbc, -nab), gamma = AngleBetween(nca, -nbc);
+    // c' is where the great circle through b and w meets the arc a-c.
+    Vec3f cp = Cross(Cross(b, w), Cross(c, a));
+    if (LengthSquared(cp) == 0) return {0.5f, 0.5f};
+    cp = Normalize(cp);
+    if (Dot(cp, a + c) < 0) cp = -cp;
+    Float u0;
+    if (Dot(a, cp) > 0.99999847691f)  // within 0.1 degree of a
+        u0 = 0;
+    else {
+        Vec3f ncpb = Cross(cp, b), nacp = Cross(a, cp);
+        if (LengthSquared(ncpb) == 0 || LengthSquared(nacp) == 0) return {0.5f, 0.5f};
+        ncpb = Normalize(ncpb); nacp = Normalize(nacp);
+        Float apPi = alpha + AngleBetween(nab, ncpb) + AngleBetween(nacp, -ncpb);
+        u0 = (apPi - Pi) / (alpha + beta + gamma - Pi);
+    }
+    Float u1 = (1 - Dot(w, b)) / (1 - Dot(cp, b));
+    return {Clamp(u0, Float(0), Float(1)), Clamp(u1, Float(0), Float(1))};
+}
+
+// ---- Shapes ----
+
+// pbrt-v4's spherical sampling is used when the triangle's solid angle lies in this range.
+constexpr Float MinSphericalSampleArea = 3e-4f, MaxSphericalSampleArea = 6.22f;
+
+// pbrt-v4 samples spheres and disks with the normal flipped by ReverseOrientation only (not by
+// a handedness-swapping transform, unlike intersection): recover ReverseOrientation.
+LU_INLINE bool ReverseOrientation(bool flipNormals, const Transform &renderFromObject) {
+    return flipNormals != renderFromObject.SwapsHandedness();
+}
+
+// Area used by the sampling pdfs, as pbrt-v4's Shape::Area(): render-space for triangles,
+// object-space (transform scale ignored) for spheres and disks.
+LU_INLINE Float ShapeArea(const SceneView &s, const Shape &shape, uint32_t prim) {
+    switch (shape.kind) {
+    case ShapeKind::Triangles: {
+        const TriangleMesh &m = s.triangleMeshes[shape.index];
+        const uint32_t *idx = s.indices.ptr + m.firstIndex + 3 * prim;
+        Vec3f p0 = s.positions[m.firstVertex + idx[0]], p1 = s.positions[m.firstVertex + idx[1]],
+              p2 = s.positions[m.firstVertex + idx[2]];
+        return 0.5f * Length(Cross(p1 - p0, p2 - p0));
+    }
+    case ShapeKind::Sphere: return 4 * Pi * Sqr(s.spheres[shape.index].radius);
+    case ShapeKind::Disk: {
+        const Disk &d = s.disks[shape.index];
+        return Pi * (Sqr(d.radius) - Sqr(d.innerRadius));
+    }
+    }
+    return 0;
+}
+
+struct TriangleData {
+    Vec3f p[3];
+    uint32_t v[3];  // absolute vertex indices
+};
+
+LU_INLINE TriangleData GetTriangle(const SceneView &s, const TriangleMesh &m, uint32_t prim) {
+    TriangleData t;
+    const uint32_t *idx = s.indices.ptr + m.firstIndex + 3 * prim;
+    for (int i = 0; i < 3; ++i) {
+        t.v[i] = m.firstVertex + idx[i];
+        t.p[i] = s.positions[t.v[i]];
+    }
+    return t;
+}
+
+// Geometric normal and uv at barycentrics b, oriented as pbrt-v4's Triangle (flip, or facing the
+// interpolated shading normal when the mesh has normals).
+LU_INLINE void TriangleNormalUV(const SceneView &s, const TriangleMesh &m, const TriangleData &t, const Float b[3],
+                                Vec3f *n, Vec2f *uv) {
+    Vec3f ng = Normalize(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+    if (m.flipNormals) ng = -ng;
+    if (m.normalOffset != NoIndex) {
+        Vec3f ns = s.normals[m.normalOffset + (t.v[0] - m.firstVertex)] * b[0] +
+                   s.normals[m.normalOffset + (t.v[1] - m.firstVertex)] * b[1] +
+                   s.normals[m.normalOffset + (t.v[2] - m.firstVertex)] * b[2];
+        if (LengthSquared(ns) > 0) ng = FaceForward(ng, ns);
+    }
+    *n = ng;
+    Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
+    if (m.uvOffset != NoIndex) {
+        uv0 = s.uvs[m.uvOffset + (t.v[0] - m.firstVertex)];
+        uv1 = s.uvs[m.uvOffset + (t.v[1] - m.firstVertex)];
+        uv2 = s.uvs[m.uvOffset + (t.v[2] - m.firstVertex)];
+    }
+    *uv = Vec2f(b[0] * uv0.x + b[1] * uv1.x + b[2] * uv2.x, b[0] * uv0.y + b[1] * uv1.y + b[2] * uv2.y);
+}
+
+// Bilinear corner weights approximating |cos| at the reference point over the spherical
+// triangle (pbrt-v4): (0,0),(1,0) -> vertex 1, (0,1) -> vertex 0, (1,1) -> vertex 2.
+LU_INLINE void TriangleCosWeights(const TriangleData &t, const LightSampleContext &ctx, Float w[4]) {
+    Vec3f wi0 = Normalize(t.p[0] - ctx.p), wi1 = Normalize(t.p[1] - ctx.p), wi2 = Normalize(t.p[2] - ctx.p);
+    w[0] = w[1] = Max(Float(0.01), AbsDot(ctx.ns, wi1));
+    w[2] = Max(Float(0.01), AbsDot(ctx.ns, wi0));
+    w[3] = Max(Float(0.01), AbsDot(ctx.ns, wi2));
+}
+
+LU_INLINE Float TriangleSolidAngle(const TriangleData &t, const Vec3f &p) {
+    return SphericalTriangleArea(Normalize(t.p[0] - p), Normalize(t.p[1] - p), Normalize(t.p[2] - p));
+}
+
+// Converts an area pdf at a sampled point to solid angle at ref; 0 if infinite.
+LU_INLINE Float AreaToSolidAnglePDF(Float pdfA, const Vec3f &ref, const Vec3f &pLight, const Vec3f &nLight,
+                                    const Vec3f &wi) {
+    Float cos = AbsDot(nLight, wi);
+    Float pdf = pdfA * DistanceSquared(ref, pLight) / cos;
+    return IsFinite(pdf) ? pdf : 0;
+}
+
+LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
+                              Vec2f u, ShapeSample *ss) {
+    const TriangleMesh &m = s.triangleMeshes[shape.index];
+    TriangleData t = GetTriangle(s, m, prim);
+    Float sa = TriangleSolidAngle(t, ctx.p);
+    Float b[3];
+    Float pdf;
+    bool spherical = sa >= MinSphericalSampleArea && sa <= MaxSphericalSampleArea;
+    if (!spherical) {
+        SampleUniformTriangle(u, &b[0], &b[1], &b[2]);
+    } else {
+        pdf = 1;
+        if (ctx.ns != Vec3f(0, 0, 0)) {
+            Float w[4];
+            TriangleCosWeights(t, ctx, w);
+            u = SampleBilinear(u, w);
+            pdf *= BilinearPDF(u, w);
+        }
+        Float triPDF;
+        SampleSphericalTriangle(t.p, ctx.p, u, b, &triPDF);
+        if (triPDF == 0) return false;
+        pdf *= triPDF;
+    }
+    ss->p = t.p[0] * b[0] + t.p[1] * b[1] + t.p[2] * b[2];
+    TriangleNormalUV(s, m, t, b, &ss->n, &ss->uv);
+    Vec3f d = ss->p - ctx.p;
+    if (LengthSquared(d) == 0) return false;
+    if (!spherical) {
+        Float area = 0.5f * Length(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+        pdf = AreaToSolidAnglePDF(1 / area, ctx.p, ss->p, ss->n, Normalize(d));
+    }
+    ss->pdf = pdf;
+    return pdf > 0;
+}
+
+LU_INLINE Float TrianglePDF(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
+                            const Vec3f &wi, const Vec3f &pLight, const Vec3f &nLight) {
+    const TriangleMesh &m = s.triangleMeshes[shape.index];
+    TriangleData t = GetTriangle(s, m, prim);
+    Float sa = TriangleSolidAngle(t, ctx.p);
+    if (sa < MinSphericalSampleArea || sa > MaxSphericalSampleArea) {
+        Float area = 0.5f * Length(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+        return AreaToSolidAnglePDF(1 / area, ctx.p, pLight, nLight, wi);
+    }
+    Float pdf = 1 / sa;
+    if (ctx.ns != Vec3f(0, 0, 0)) {
+        Float w[4];
+        TriangleCosWeights(t, ctx, w);
+        pdf *= BilinearPDF(InvertSphericalTriangleSample(t.p, ctx.p, wi), w);
+    }
+    return pdf;
+}
+
+// True when ctx.p is inside (or on) the sphere, after pbrt-v4's offset of the reference point
+// towards the center.
+LU_INLINE bool InsideSphere(const Sphere &sp, const LightSampleContext &ctx, const Vec3f &pCenter) {
+    Vec3f pOrigin = ctx.p;
+    if (ctx.n != Vec3f(0, 0, 0)) pOrigin = OffsetRayOrigin(ctx.p, ctx.n, pCenter - ctx.p);
+    return DistanceSquared(pOrigin, pCenter) <= Sqr(sp.radius);
+}
+
+// Sphere uv and normal at an object-space point on it.
+LU_INLINE void SpherePointData(const Sphere &sp, const Vec3f &pObj, Vec3f *n, Vec2f *uv) {
+    *n = Normalize(sp.renderFromObject.ApplyNormal(pObj));
+    if (ReverseOrientation(sp.flipNormals, sp.renderFromObject)) *n = -*n;
+    Float phi = std::atan2(pObj.y, pObj.x);
+    if (phi < 0) phi += 2 * Pi;
+    *uv = Vec2f(phi / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+}
+
+LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
+    Vec3f pCenter = sp.renderFromObject.ApplyPoint(Vec3f(0, 0, 0));
+    if (InsideSphere(sp, ctx, pCenter)) {
+        // Uniform area sampling, converted to solid angle.
+        Vec3f pObj = SampleUniformSphere(u) * sp.radius;
+        SpherePointData(sp, pObj, &ss->n, &ss->uv);
+        ss->p = sp.renderFromObject.ApplyPoint(pObj);
+        Vec3f d = ss->p - ctx.p;
+        if (LengthSquared(d) == 0) return false;
+        ss->pdf = AreaToSolidAnglePDF(1 / (4 * Pi * Sqr(sp.radius)), ctx.p, ss->p, ss->n, Normalize(d));
+        return ss->pdf > 0;
+    }
+    // Uniform sampling of the cone of directions subtended by the sphere.
+    Float sinThetaMax = sp.radius / Distance(ctx.p, pCenter);
+    Float sin2ThetaMax = sinThetaMax * sinThetaMax;
+    Float cosThetaMax = SafeSqrt(1 - sin2ThetaMax);
+    Float oneMinusCosThetaMax = 1 - cosThetaMax;
+    Float cosTheta = (cosThetaMax - 1) * u.x + 1;
+    Float sin2Theta = 1 - cosTheta * cosTheta;
+    if (sin2ThetaMax < 0.00068523f /* sin^2(1.5 deg) */) {
+        // Taylor expansion for small cones.
+        sin2Theta = sin2ThetaMax * u.x;
+        cosTheta = std::sqrt(1 - sin2Theta);
+        oneMinusCosThetaMax = sin2ThetaMax / 2;
+    }
+    // Angle alpha from the center to the sampled point, seen from the sphere center.
+    Float cosAlpha = sin2Theta / sinThetaMax + cosTheta * SafeSqrt(1 - sin2Theta / Sqr(sinThetaMax));
+    Float sinAlpha = SafeSqrt(1 - Sqr(cosAlpha));
+    Float phi = u.y * 2 * Pi;
+    Vec3f w = SphericalDirection(sinAlpha, cosAlpha, phi);
+    Frame frame = Frame::FromZ(Normalize(pCenter - ctx.p));
+    Vec3f nOut = frame.FromLocal(-w);
+    ss->p = pCenter + nOut * sp.radius;
+    ss->n = ReverseOrientation(sp.flipNormals, sp.renderFromObject) ? -nOut : nOut;
+    Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
+    Float phiObj = std::atan2(pObj.y, pObj.x);
+    if (phiObj < 0) phiObj += 2 * Pi;
+    ss->uv = Vec2f(phiObj / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+    ss->pdf = 1 / (2 * Pi * oneMinusCosThetaMax);
+    return oneMinusCosThetaMax > 0;
+}
+
+LU_INLINE Float SpherePDF(const Sphere &sp, const LightSampleContext &ctx, const Vec3f &wi, const Vec3f &pLight,
+                          const Vec3f &nLight) {
+    Vec3f pCenter = sp.renderFromObject.ApplyPoint(Vec3f(0, 0, 0));
+    if (InsideSphere(sp, ctx, pCenter))
+        return AreaToSolidAnglePDF(1 / (4 * Pi * Sqr(sp.radius)), ctx.p, pLight, nLight, wi);
+    Float sin2ThetaMax = Sqr(sp.radius) / DistanceSquared(ctx.p, pCenter);
+    Float oneMinusCosThetaMax = 1 - SafeSqrt(1 - sin2ThetaMax);
+    if (sin2ThetaMax < 0.00068523f) oneMinusCosThetaMax = sin2ThetaMax / 2;
+    return 1 / (2 * Pi * oneMinusCosThetaMax);
+}
+
+// pbrt-v4 samples the full disk of the outer radius (the inner hole included) with pdf
+// 1 / Area(); we do the same for parity.
+LU_INLINE bool SampleDisk(const Disk &dk, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
+    Vec2f pd = SampleUniformDiskConcentric(u);
+    Vec3f pObj(pd.x * dk.radius, pd.y * dk.radius, dk.height);
+    ss->p = dk.renderFromObject.ApplyPoint(pObj);
+    ss->n = Normalize(dk.renderFromObject.ApplyNormal(Vec3f(0, 0, 1)));
+    if (ReverseOrientation(dk.flipNormals, dk.renderFromObject)) ss->n = -ss->n;
+    Float dist = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+    Float phi = std::atan2(pObj.y, pObj.x);
+    if (phi < 0) phi += 2 * Pi;
+    Float rr = dk.radius - dk.innerRadius;
+    ss->uv = Vec2f(phi / (2 * Pi), rr > 0 ? (dk.radius - dist) / rr : 0);
+    Vec3f d = ss->p - ctx.p;
+    if (LengthSquared(d) == 0) return false;
+    Float area = Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius));
+    ss->pdf = AreaToSolidAnglePDF(1 / area, ctx.p, ss->p, ss->n, Normalize(d));
+    return ss->pdf > 0;
+}
+
+// Samples primitive `prim` of `shape` from ctx. Returns false (and no sample) on failure.
+LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
+                           Vec2f u, ShapeSample *ss) {
+    switch (shape.kind) {
+    case ShapeKind::Triangles: return SampleTriangle(s, shape, prim, ctx, u, ss);
+    case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss);
+    case ShapeKind::Disk: return SampleDisk(s.disks[shape.index], ctx, u, ss);
+    }
+    return false;
+}
+
+// Solid-angle pdf at ctx.p of SampleShape producing direction wi (unit), which hits the shape
+// at pLight with geometric normal nLight.
+LU_INLINE Float ShapePDF(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
+                         const Vec3f &wi, const Vec3f &pLight, const Vec3f &nLight) {
+    switch (shape.kind) {
+    case ShapeKind::Triangles: return TrianglePDF(s, shape, prim, ctx, wi, pLight, nLight);
+    case ShapeKind::Sphere: return SpherePDF(s.spheres[shape.index], ctx, wi, pLight, nLight);
+    case ShapeKind::Disk: {
+        const Disk &dk = s.disks[shape.index];
+        return AreaToSolidAnglePDF(1 / (Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius))), ctx.p, pLight, nLight, wi);
+    }
+    }
+    return 0;
+}
+
+}  // namespace lu
