@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -109,14 +111,25 @@ void *CreateLeaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive *prims, 
     return leaf;
 }
 
+// Next float towards -inf / +inf (finite inputs; inline bit arithmetic, libm's nextafterf is a call).
+inline float NextDown(float f) {
+    if (f == 0) return -std::numeric_limits<float>::denorm_min();
+    uint32_t b;
+    std::memcpy(&b, &f, 4);
+    b = f > 0 ? b - 1 : b + 1;
+    std::memcpy(&f, &b, 4);
+    return f;
+}
+inline float NextUp(float f) { return -NextDown(-f); }
+
 // Rounds a double outward to float bounds.
 inline float RoundDown(double v) {
     float f = float(v);
-    return double(f) > v ? std::nextafter(f, -INFINITY) : f;
+    return double(f) > v ? NextDown(f) : f;
 }
 inline float RoundUp(double v) {
     float f = float(v);
-    return double(f) < v ? std::nextafter(f, INFINITY) : f;
+    return double(f) < v ? NextUp(f) : f;
 }
 
 // Spatial split: clips the primitive (within its current, possibly already clipped bounds) at

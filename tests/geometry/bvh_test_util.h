@@ -1,0 +1,484 @@
+// Lucerna tests: generated scenes, ray sets and an Embree reference for the BVH tests
+// (tests/geometry/bvh_test.cpp and the CPU/GPU agreement tests in tests/gpu). Header-only.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lucerna/core/interaction.h"
+#include "lucerna/core/scene_data.h"
+#include "lucerna/geometry/bvh.h"
+#include "lucerna/geometry/bvh_traverse.h"
+#include "lucerna/geometry/shapes.h"
+
+namespace lu::test {
+
+// ---- Deterministic random numbers (PCG32, O'Neill 2014) ----
+
+struct Pcg32 {
+    uint64_t state = 0x853c49e6748fea9bULL, inc = 0xda3e39cb94b95bdbULL;
+    explicit Pcg32(uint64_t seed, uint64_t seq = 1) {
+        state = 0;
+        inc = (seq << 1u) | 1u;
+        Next();
+        state += seed;
+        Next();
+    }
+    uint32_t Next() {
+        uint64_t old = state;
+        state = old * 6364136223846793005ULL + inc;
+        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+        uint32_t rot = uint32_t(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((32 - rot) & 31));
+    }
+    Float Uniform() { return Float(Next() >> 8) * 0x1p-24f; }
+    Vec3f InBox(const Bounds3f &b) {
+        Vec3f d = b.Diagonal();
+        Float x = Uniform(), y = Uniform(), z = Uniform();
+        return b.pMin + Vec3f(x * d.x, y * d.y, z * d.z);
+    }
+    Vec3f Direction() {
+        Float z = 1 - 2 * Uniform();
+        Float r = std::sqrt(Max(Float(0), 1 - z * z)), phi = 2 * Pi * Uniform();
+        return Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+    }
+};
+
+// ---- Transforms ----
+
+inline Transform MakeTransform(const Matrix4 &m) {
+    Matrix4 inv;
+    Inverse(m, &inv);
+    return Transform(m, inv);
+}
+inline Transform Translate(const Vec3f &t) {
+    Matrix4 m;
+    m.m[0][3] = t.x; m.m[1][3] = t.y; m.m[2][3] = t.z;
+    return MakeTransform(m);
+}
+inline Transform Scale(Float x, Float y, Float z) {
+    Matrix4 m;
+    m.m[0][0] = x; m.m[1][1] = y; m.m[2][2] = z;
+    return MakeTransform(m);
+}
+inline Transform Rotate(Float degrees, Vec3f axis) {
+    axis = Normalize(axis);
+    Float s = std::sin(Radians(degrees)), c = std::cos(Radians(degrees));
+    Matrix4 m;
+    m.m[0][0] = axis.x * axis.x + (1 - axis.x * axis.x) * c;
+    m.m[0][1] = axis.x * axis.y * (1 - c) - axis.z * s;
+    m.m[0][2] = axis.x * axis.z * (1 - c) + axis.y * s;
+    m.m[1][0] = axis.x * axis.y * (1 - c) + axis.z * s;
+    m.m[1][1] = axis.y * axis.y + (1 - axis.y * axis.y) * c;
+    m.m[1][2] = axis.y * axis.z * (1 - c) - axis.x * s;
+    m.m[2][0] = axis.x * axis.z * (1 - c) - axis.y * s;
+    m.m[2][1] = axis.y * axis.z * (1 - c) + axis.x * s;
+    m.m[2][2] = axis.z * axis.z + (1 - axis.z * axis.z) * c;
+    return MakeTransform(m);
+}
+
+// ---- A scene owning its arrays ----
+
+struct OwnedScene {
+    std::vector<Vec3f> positions;
+    std::vector<uint32_t> indices;
+    std::vector<TriangleMesh> meshes;
+    std::vector<Sphere> spheres;
+    std::vector<Disk> disks;
+    std::vector<Shape> shapes;
+    Bounds3f bounds;
+
+    void AddMesh(const std::vector<Vec3f> &p, const std::vector<uint32_t> &idx) {
+        TriangleMesh m;
+        m.firstVertex = uint32_t(positions.size());
+        m.vertexCount = uint32_t(p.size());
+        m.firstIndex = uint32_t(indices.size());
+        m.triangleCount = uint32_t(idx.size() / 3);
+        positions.insert(positions.end(), p.begin(), p.end());
+        indices.insert(indices.end(), idx.begin(), idx.end());
+        for (const Vec3f &v : p) bounds.Expand(v);
+        Shape s;
+        s.kind = ShapeKind::Triangles;
+        s.index = uint32_t(meshes.size());
+        s.primitiveCount = m.triangleCount;
+        meshes.push_back(m);
+        shapes.push_back(s);
+    }
+    void AddSphere(const Transform &renderFromObject, Float radius) {
+        Sphere sp;
+        sp.renderFromObject = renderFromObject;
+        sp.radius = radius;
+        Shape s;
+        s.kind = ShapeKind::Sphere;
+        s.index = uint32_t(spheres.size());
+        spheres.push_back(sp);
+        shapes.push_back(s);
+        bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
+    }
+    void AddDisk(const Transform &renderFromObject, Float height, Float radius, Float innerRadius) {
+        Disk d;
+        d.renderFromObject = renderFromObject;
+        d.height = height;
+        d.radius = radius;
+        d.innerRadius = innerRadius;
+        Shape s;
+        s.kind = ShapeKind::Disk;
+        s.index = uint32_t(disks.size());
+        disks.push_back(d);
+        shapes.push_back(s);
+        bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
+    }
+    SceneView View() const {
+        SceneView v;
+        v.positions = {positions.data(), uint32_t(positions.size())};
+        v.indices = {indices.data(), uint32_t(indices.size())};
+        v.triangleMeshes = {meshes.data(), uint32_t(meshes.size())};
+        v.spheres = {spheres.data(), uint32_t(spheres.size())};
+        v.disks = {disks.data(), uint32_t(disks.size())};
+        v.shapes = {shapes.data(), uint32_t(shapes.size())};
+        v.bounds = bounds;
+        return v;
+    }
+};
+
+// ---- Generated geometry ----
+
+// Random triangles of random sizes (up to `maxSize`) in the unit cube.
+inline void AddTriangleSoup(OwnedScene &s, int count, Float maxSize, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Vec3f> p;
+    std::vector<uint32_t> idx;
+    for (int i = 0; i < count; ++i) {
+        Vec3f c(rng.Uniform(), rng.Uniform(), rng.Uniform());
+        Float size = maxSize * (0.05f + rng.Uniform());
+        for (int k = 0; k < 3; ++k) {
+            p.push_back(c + rng.Direction() * size);
+            idx.push_back(uint32_t(p.size() - 1));
+        }
+    }
+    s.AddMesh(p, idx);
+}
+
+// A closed UV sphere mesh (shared vertices, so rays hit shared edges and poles).
+inline void AddSphereMesh(OwnedScene &s, Vec3f center, Float radius, int nu, int nv) {
+    std::vector<Vec3f> p;
+    std::vector<uint32_t> idx;
+    for (int j = 0; j <= nv; ++j) {
+        Float theta = Pi * j / nv;
+        for (int i = 0; i < nu; ++i) {
+            Float phi = 2 * Pi * i / nu;
+            p.push_back(center + Vec3f(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                       std::cos(theta)) * radius);
+        }
+    }
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            uint32_t a = j * nu + i, b = j * nu + (i + 1) % nu, c = (j + 1) * nu + i, d = (j + 1) * nu + (i + 1) % nu;
+            if (j > 0) idx.insert(idx.end(), {a, c, b});
+            if (j < nv - 1) idx.insert(idx.end(), {b, c, d});
+        }
+    s.AddMesh(p, idx);
+}
+
+// A height-field grid of n x n quads over [x0, x1] x [y0, y1] (z up), shared vertices.
+inline void AddGrid(OwnedScene &s, int n, Float x0, Float x1, Float y0, Float y1, Float z, Float bump, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Vec3f> p;
+    std::vector<uint32_t> idx;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            p.push_back(Vec3f(x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, z + bump * rng.Uniform()));
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            idx.insert(idx.end(), {a, b, d, a, d, c});
+        }
+    s.AddMesh(p, idx);
+}
+
+// Long thin parallel strips along the (1,1,1) diagonal: their boxes all overlap, the case
+// spatial splits are for.
+inline void AddSlivers(OwnedScene &s, int count, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Vec3f> p;
+    std::vector<uint32_t> idx;
+    for (int i = 0; i < count; ++i) {
+        Vec3f off = Vec3f(rng.Uniform() - 0.5f, rng.Uniform() - 0.5f, rng.Uniform() - 0.5f) * 0.6f;
+        Vec3f a = off, b = Vec3f(1, 1, 1) + off, c = a + rng.Direction() * 0.01f;
+        p.insert(p.end(), {a, b, c});
+        uint32_t k = uint32_t(p.size()) - 3;
+        idx.insert(idx.end(), {k, k + 1, k + 2});
+    }
+    s.AddMesh(p, idx);
+}
+
+// Spheres and disks with rotations, non-uniform scales and an annulus.
+inline void AddAnalyticShapes(OwnedScene &s) {
+    s.AddSphere(Translate(Vec3f(0.3f, 0.3f, 0.4f)), 0.12f);
+    s.AddSphere(Translate(Vec3f(0.7f, 0.6f, 0.5f)) * Rotate(30, Vec3f(1, 1, 0)) * Scale(1, 0.5f, 2), 0.08f);
+    s.AddSphere(Translate(Vec3f(0.5f, 0.8f, 0.2f)), 0.03f);
+    s.AddDisk(Translate(Vec3f(0.5f, 0.5f, 0.9f)) * Rotate(25, Vec3f(0, 1, 0.3f)), 0.0f, 0.25f, 0.1f);
+    s.AddDisk(Translate(Vec3f(0.2f, 0.7f, 0.6f)) * Rotate(90, Vec3f(1, 0, 0)), 0.05f, 0.15f, 0.0f);
+}
+
+// ---- Ray sets ----
+
+// Camera-like bundles: `cameras` pinholes around (and one inside) the scene looking at its
+// center, each shooting res x res rays through a 60 degree field of view.
+inline std::vector<Ray> CoherentRays(const Bounds3f &b, int cameras, int res, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Ray> rays;
+    Vec3f center = b.Center();
+    Float radius = 0.5f * Length(b.Diagonal());
+    for (int c = 0; c < cameras; ++c) {
+        Vec3f eye = c == 0 ? center + (rng.InBox(b) - center) * 0.3f : center + rng.Direction() * (1.5f * radius);
+        Vec3f target = center + (rng.InBox(b) - center) * 0.2f;
+        Frame f = Frame::FromZ(Normalize(target - eye));
+        Float tanHalf = std::tan(Radians(30));
+        for (int y = 0; y < res; ++y)
+            for (int x = 0; x < res; ++x) {
+                Float u = (2 * (x + 0.5f) / res - 1) * tanHalf, v = (2 * (y + 0.5f) / res - 1) * tanHalf;
+                Ray r;
+                r.o = eye;
+                r.d = Normalize(f.FromLocal(Vec3f(u, v, 1)));
+                rays.push_back(r);
+            }
+    }
+    return rays;
+}
+
+// Random origins in the (slightly enlarged) bounds and uniform directions; every 16th ray is
+// axis-aligned or has a zero direction component (slab-test edge cases).
+inline std::vector<Ray> IncoherentRays(const Bounds3f &b, int count, uint64_t seed) {
+    Pcg32 rng(seed);
+    Bounds3f big = b;
+    Vec3f pad = b.Diagonal() * 0.05f;
+    big.pMin = big.pMin - pad;
+    big.pMax = big.pMax + pad;
+    std::vector<Ray> rays(count);
+    for (int i = 0; i < count; ++i) {
+        Ray &r = rays[i];
+        r.o = rng.InBox(big);
+        r.d = rng.Direction();
+        if (i % 16 == 0) {
+            int axis = int(rng.Next() % 3);
+            r.d[axis] = 0;
+            if (i % 32 == 0) r.d[(axis + 1) % 3] = 0;
+            if (LengthSquared(r.d) == 0) r.d[axis] = 1;
+            r.d = Normalize(r.d);
+        }
+    }
+    return rays;
+}
+
+// Segments between random points (unnormalized directions, tMax = 1): shadow-ray queries.
+inline std::vector<Ray> SegmentRays(const Bounds3f &b, int count, uint64_t seed) {
+    Pcg32 rng(seed);
+    std::vector<Ray> rays(count);
+    for (int i = 0; i < count; ++i) {
+        Vec3f p0 = rng.InBox(b), p1 = rng.InBox(b);
+        rays[i].o = p0;
+        rays[i].d = p1 - p0;
+        rays[i].tMax = 1;
+    }
+    return rays;
+}
+
+// ---- Embree reference (built-in triangles, user geometry for spheres and disks) ----
+
+class EmbreeReference {
+  public:
+    explicit EmbreeReference(const SceneView &scene) : scene_(scene) {
+        device_ = rtcNewDevice(nullptr);
+        rtc_ = rtcNewScene(device_);
+        rtcSetSceneFlags(rtc_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(rtc_, RTC_BUILD_QUALITY_HIGH);
+        users_.reserve(scene.shapes.size);
+        for (uint32_t s = 0; s < scene.shapes.size; ++s) {
+            const Shape &shape = scene.shapes[s];
+            RTCGeometry g;
+            if (shape.kind == ShapeKind::Triangles) {
+                const TriangleMesh &m = scene.triangleMeshes[shape.index];
+                g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+                float *v = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                        3 * sizeof(float), m.vertexCount));
+                for (uint32_t i = 0; i < m.vertexCount; ++i) {
+                    const Vec3f &p = scene.positions[m.firstVertex + i];
+                    v[3 * i] = p.x; v[3 * i + 1] = p.y; v[3 * i + 2] = p.z;
+                }
+                unsigned *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+                    g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangleCount));
+                for (uint32_t i = 0; i < 3 * m.triangleCount; ++i) idx[i] = scene.indices[m.firstIndex + i];
+            } else {
+                g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+                users_.push_back(User{&scene_, s});
+                rtcSetGeometryUserPrimitiveCount(g, 1);
+                rtcSetGeometryUserData(g, &users_.back());
+                rtcSetGeometryBoundsFunction(g, &Bounds, nullptr);
+                rtcSetGeometryIntersectFunction(g, &Intersect);
+                rtcSetGeometryOccludedFunction(g, &Occluded);
+            }
+            rtcCommitGeometry(g);
+            rtcAttachGeometryByID(rtc_, g, s);
+            rtcReleaseGeometry(g);
+        }
+        rtcCommitScene(rtc_);
+    }
+    ~EmbreeReference() {
+        rtcReleaseScene(rtc_);
+        rtcReleaseDevice(device_);
+    }
+    EmbreeReference(const EmbreeReference &) = delete;
+    EmbreeReference &operator=(const EmbreeReference &) = delete;
+
+    HitRecord Closest(const Ray &ray) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh = ToRtc(ray);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(rtc_, &ctx, &rh);
+        HitRecord h;
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            h.t = rh.ray.tfar;
+            h.shape = rh.hit.geomID;
+            h.primitive = rh.hit.primID;
+            h.b1 = rh.hit.u;
+            h.b2 = rh.hit.v;
+        }
+        return h;
+    }
+    bool Occluded(const Ray &ray) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh = ToRtc(ray);
+        rtcOccluded1(rtc_, &ctx, &rh.ray);
+        return rh.ray.tfar < 0;
+    }
+
+  private:
+    struct User {
+        const SceneView *scene;
+        uint32_t shape;
+    };
+    static RTCRayHit ToRtc(const Ray &ray) {
+        RTCRayHit rh{};
+        rh.ray.org_x = ray.o.x; rh.ray.org_y = ray.o.y; rh.ray.org_z = ray.o.z;
+        rh.ray.dir_x = ray.d.x; rh.ray.dir_y = ray.d.y; rh.ray.dir_z = ray.d.z;
+        rh.ray.tnear = 0;
+        // Our segments are open at tMax; Embree's is closed: step one float below.
+        rh.ray.tfar = std::isinf(ray.tMax) ? ray.tMax : std::nextafter(ray.tMax, 0.0f);
+        rh.ray.mask = 0xffffffffu;
+        rh.ray.flags = 0;
+        rh.ray.time = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        return rh;
+    }
+    static bool IntersectUser(const User &u, const Ray &ray, Float tMax, Float *t) {
+        const Shape &shape = u.scene->shapes[u.shape];
+        if (shape.kind == ShapeKind::Sphere) return IntersectSphere(u.scene->spheres[shape.index], ray, tMax, t);
+        return IntersectDisk(u.scene->disks[shape.index], ray, tMax, t);
+    }
+    static void Bounds(const RTCBoundsFunctionArguments *args) {
+        const User &u = *static_cast<const User *>(args->geometryUserPtr);
+        Bounds3f b = PrimitiveBounds(*u.scene, u.shape, 0);
+        *args->bounds_o = RTCBounds{b.pMin.x, b.pMin.y, b.pMin.z, 0, b.pMax.x, b.pMax.y, b.pMax.z, 0};
+    }
+    static void Intersect(const RTCIntersectFunctionNArguments *args) {
+        if (args->N != 1 || !args->valid[0]) return;
+        const User &u = *static_cast<const User *>(args->geometryUserPtr);
+        RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
+        Ray ray;
+        ray.o = Vec3f(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z);
+        ray.d = Vec3f(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
+        // tfar is closed in Embree, tMax open here: allow t == tfar.
+        Float t;
+        if (!IntersectUser(u, ray, std::nextafter(rh->ray.tfar, Infinity), &t)) return;
+        rh->ray.tfar = t;
+        rh->hit.geomID = args->geomID;
+        rh->hit.primID = args->primID;
+        rh->hit.u = rh->hit.v = 0;
+        rh->hit.instID[0] = args->context->instID[0];
+    }
+    static void Occluded(const RTCOccludedFunctionNArguments *args) {
+        if (args->N != 1 || !args->valid[0]) return;
+        const User &u = *static_cast<const User *>(args->geometryUserPtr);
+        RTCRay *r = reinterpret_cast<RTCRay *>(args->ray);
+        Ray ray;
+        ray.o = Vec3f(r->org_x, r->org_y, r->org_z);
+        ray.d = Vec3f(r->dir_x, r->dir_y, r->dir_z);
+        Float t;
+        if (IntersectUser(u, ray, std::nextafter(r->tfar, Infinity), &t)) r->tfar = -Infinity;
+    }
+
+    SceneView scene_;
+    RTCDevice device_ = nullptr;
+    RTCScene rtc_ = nullptr;
+    std::vector<User> users_;
+};
+
+// ---- Comparing hit lists ----
+
+struct HitComparison {
+    size_t rays = 0, hits = 0;
+    size_t hitMiss = 0;      // one side hits, the other misses
+    size_t otherPrim = 0;    // both hit at the same distance (within tolerance) but different primitives
+    size_t distance = 0;     // both hit, distances differ beyond the tolerance
+    size_t Disagreements() const { return hitMiss + otherPrim + distance; }
+    std::string Summary() const {
+        char buf[200];
+        std::snprintf(buf, sizeof(buf), "%zu rays, %zu hits: %zu hit/miss, %zu other-primitive, %zu distance", rays,
+                      hits, hitMiss, otherPrim, distance);
+        return buf;
+    }
+};
+
+// Distances agree when |ta - tb| <= relTol * max(ta, tb) + absTol / |d|: absTol (render-space
+// length, e.g. 1e-5 of the scene diagonal) covers rounding of hits very close to the origin.
+inline HitComparison CompareHits(const std::vector<HitRecord> &a, const std::vector<HitRecord> &b,
+                                 const std::vector<Ray> &rays, Float relTol, Float absTol) {
+    HitComparison c;
+    c.rays = a.size();
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].Hit()) c.hits++;
+        if (a[i].Hit() != b[i].Hit()) {
+            c.hitMiss++;
+            continue;
+        }
+        if (!a[i].Hit()) continue;
+        Float tol = relTol * Max(std::abs(a[i].t), std::abs(b[i].t)) + absTol / Length(rays[i].d);
+        if (!(std::abs(a[i].t - b[i].t) <= tol)) c.distance++;
+        else if (a[i].shape != b[i].shape || a[i].primitive != b[i].primitive) c.otherPrim++;
+    }
+    return c;
+}
+
+inline std::vector<HitRecord> TraceClosestCpu(const GpuBVH &bvh, const SceneView &scene, const std::vector<Ray> &rays) {
+    std::vector<HitRecord> hits(rays.size());
+    BVHView view = bvh.View();
+    for (size_t i = 0; i < rays.size(); ++i) IntersectClosest(view, scene, rays[i], &hits[i]);
+    return hits;
+}
+
+inline std::vector<uint8_t> TraceAnyCpu(const GpuBVH &bvh, const SceneView &scene, const std::vector<Ray> &rays) {
+    std::vector<uint8_t> occ(rays.size());
+    BVHView view = bvh.View();
+    for (size_t i = 0; i < rays.size(); ++i) occ[i] = IntersectAny(view, scene, rays[i]) ? 1 : 0;
+    return occ;
+}
+
+inline std::string StatsSummary(const BVHStats &s) {
+    char buf[300];
+    std::snprintf(buf, sizeof(buf),
+                  "%u prims, %u refs (x%.3f), %u inner nodes, %u leaves (max %u prims), depth %u, SAH %.2f, build %.1f ms",
+                  s.primitives, s.references, s.primitives ? double(s.references) / s.primitives : 0.0, s.innerNodes,
+                  s.leaves, s.maxLeafSize, s.maxDepth, s.sahCost, s.buildSeconds * 1e3);
+    return buf;
+}
+
+}  // namespace lu::test
