@@ -9,6 +9,7 @@
 
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/lights/lights.h"
+#include "lucerna/spectrum/registry.h"
 #include "support/test_support.h"
 
 namespace lu {
@@ -839,6 +840,25 @@ TEST(RGBIlluminant, GrayAndTableLookup) {
     EXPECT_NEAR(sp.c[2], 0.8f, 1e-6f);
     Float expected = 1.4f * (0.5f + 0.8f / (2 * std::sqrt(1 + 0.64f)));
     EXPECT_NEAR(SampleSpectrum(sp, lambda, s.spectra)[0], expected, 1e-5f);
+}
+
+TEST(RGBIlluminant, MatchesRegistryWithTheSRGBTable) {
+    SpectrumRegistry reg;
+    RGBToSpectrumTableData tab = SRGBToSpectrumTable();
+    SceneView s;
+    s.rgbToSpecCoeffs = {tab.coeffs, 3 * 3 * tab.res * tab.res * tab.res};
+    s.rgbToSpecZNodes = {tab.zNodes, tab.res};
+    s.rgbToSpecRes = tab.res;
+    s.spectra = reg.Tables();
+    s.illuminantTable = TableD65;
+    SampledWavelengths lambda = TestLambda();
+    const Float rgbs[][3] = {{0.8f, 0.3f, 0.1f}, {0.05f, 0.2f, 1.7f}, {2, 2, 2}, {0.3f, -0.1f, 0.5f}};
+    for (const auto &rgb : rgbs) {
+        SampledSpectrum a = SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra);
+        Spectrum ref = reg.FromRGB(RGB{Max(rgb[0], 0.f), Max(rgb[1], 0.f), Max(rgb[2], 0.f)}, SpectrumType::Illuminant);
+        SampledSpectrum b = SampleSpectrum(ref, lambda, s.spectra);
+        for (int i = 0; i < NSpectrumSamples; ++i) EXPECT_NEAR(a[i], b[i], 1e-4f * (1 + b[i])) << rgb[0];
+    }
 }
 
 }  // namespace
