@@ -342,9 +342,9 @@ TEST(TriangleLight, SamplingMatchesPdf) {
     for (const TriangleCase &tc : cases) {
         SCOPED_TRACE(tc.what);
         TestScene ts;
-        // Orient the emitting side towards p.
+        // Orient the normal towards p, or away from it for two-sided lights (emitting backwards).
         Vec3f ng = Cross(tc.b - tc.a, tc.c - tc.a);
-        bool flip = Dot(ng, tc.p - tc.a) < 0;
+        bool flip = (Dot(ng, tc.p - tc.a) < 0) != tc.twoSided;
         uint32_t sh = ts.AddTriangle(tc.a, tc.b, tc.c, flip);
         uint32_t li = ts.AddAreaLight(sh, 2.f, tc.twoSided);
         SceneView s = ts.View();
