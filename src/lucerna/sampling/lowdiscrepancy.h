@@ -110,13 +110,22 @@ struct OwenScrambler {
     }
 };
 
-// Sobol' sample of index a in dimension 0 or 1, randomized, in [0, 1). The 32-bit value is
-// truncated to the float's 24 bits (pbrt-v4 rounds to nearest, which can carry a scrambled
-// point across a stratum boundary; the two differ by at most 2^-24).
+// v / 2^32 as a float rounded toward zero: bits below the 24 leading significant bits are
+// cleared first, so the conversion is exact. (pbrt-v4 rounds to nearest, which can carry a
+// scrambled point across a stratum boundary; the two differ by at most one float ulp.)
+LU_INLINE Float UInt32ToUnitFloat(uint32_t v) {
+    uint32_t m = v | (v >> 1);
+    m |= m >> 2;
+    m |= m >> 4;
+    m |= m >> 8;
+    m |= m >> 16;
+    return Float(v & ~(m >> 24)) * 0x1p-32f;
+}
+
+// Sobol' sample of index a in dimension 0 or 1, randomized, in [0, 1).
 template <typename R>
 LU_INLINE Float SobolSample(uint64_t a, int dimension, R randomizer) {
-    uint32_t v = randomizer(SobolGenerate(a, dimension));
-    return Float(v >> 8) * 0x1p-24f;
+    return UInt32ToUnitFloat(randomizer(SobolGenerate(a, dimension)));
 }
 
 // The same with the randomizer chosen at run time; hash seeds the randomizer.
