@@ -20,7 +20,7 @@ LU_INLINE uint64_t MixBits(uint64_t v) {
 }
 
 // MurmurHash64A over len bytes (Austin Appleby, public domain), byte-wise tail as pbrt-v4.
-LU_INLINE uint64_t MurmurHash64A(const unsigned char *key, size_t len, uint64_t seed) {
+LU_INLINE uint64_t MurmurHash64A(const unsigned char *key, size_t len, uint64_t seed = 0) {
     const uint64_t m = 0xc6a4a7935bd1e995ull;
     const int r = 47;
     uint64_t h = seed ^ (uint64_t(len) * m);

@@ -26,6 +26,10 @@ class RNG {
     template <typename T>
     LU_HD T Uniform();
 
+    // Short names for the two common draws (used by the stochastic BSDFs).
+    LU_HD uint32_t Uniform32();
+    LU_HD Float UniformFloat();
+
     // Uniform integer in [0, bound) without modulo bias (bound > 0).
     LU_HD uint32_t UniformBounded(uint32_t bound);
 
@@ -99,6 +103,9 @@ LU_INLINE void RNG::SetSequence(uint64_t seqIndex, uint64_t seed) {
     state += seed;
     Uniform<uint32_t>();
 }
+
+LU_INLINE uint32_t RNG::Uniform32() { return Uniform<uint32_t>(); }
+LU_INLINE Float RNG::UniformFloat() { return Uniform<float>(); }
 
 LU_INLINE uint32_t RNG::UniformBounded(uint32_t bound) {
     uint32_t threshold = (~bound + 1u) % bound;
