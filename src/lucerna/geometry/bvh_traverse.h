@@ -181,4 +181,12 @@ LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ra
     return false;
 }
 
+// The Tracer of integrators/path.h over this BVH (the CUDA megakernel's; works on the host too).
+struct BVHTracer {
+    BVHView bvh;
+    const SceneView *scene = nullptr;
+    LU_HD bool Intersect(const Ray &ray, HitRecord *hit) const { return IntersectClosest(bvh, *scene, ray, hit); }
+    LU_HD bool Occluded(const Ray &ray) const { return IntersectAny(bvh, *scene, ray); }
+};
+
 }  // namespace lu
