@@ -126,6 +126,9 @@ uint32_t ResolveShapeMaterial(BuildContext &ctx, const ShapeEntity &shape, std::
 LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLinear, const FileLoc &loc);
 uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap);
 std::string ResolvePath(const std::string &baseDirectory, const std::string &filename);
+// pbrt-v4 resolves relative file names against the main scene file's directory; when the file
+// is not there, the directory of the file that named it (Include) is tried.
+std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirectory, const std::string &filename);
 
 // ---- build_shapes.cpp ----
 

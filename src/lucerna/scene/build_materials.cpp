@@ -14,6 +14,14 @@ std::string ResolvePath(const std::string &baseDirectory, const std::string &fil
     return (std::filesystem::path(baseDirectory) / p).lexically_normal().string();
 }
 
+std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirectory, const std::string &filename) {
+    std::string main = ResolvePath(ctx.desc.baseDirectory, filename);
+    std::error_code ec;
+    if (entityDirectory.empty() || entityDirectory == ctx.desc.baseDirectory || std::filesystem::exists(main, ec)) return main;
+    std::string local = ResolvePath(entityDirectory, filename);
+    return std::filesystem::exists(local, ec) ? local : main;
+}
+
 // ---- Images ----
 
 LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLinear, const FileLoc &loc) {
@@ -115,7 +123,7 @@ ImageTexParams ReadImageTexture(BuildContext &ctx, const TextureEntity &te) {
     r.invert = p.GetOneBool("invert", false);
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty()) Fail(te.loc, "\"string filename\" not provided for image texture " + Quoted(te.textureName));
-    std::string path = ResolvePath(te.baseDirectory, filename);
+    std::string path = ResolveScenePath(ctx, te.baseDirectory, filename);
     std::string ext = std::filesystem::path(filename).extension().string();
     for (char &c : ext) c = char(std::tolower((unsigned char)c));
     bool isPNG = ext == ".png";

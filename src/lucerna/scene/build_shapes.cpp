@@ -4,11 +4,7 @@
 #include <cmath>
 
 #include "lucerna/scene/build_internal.h"
-
-#if __has_include("lucerna/scene/ply.h")
 #include "lucerna/scene/ply.h"
-#define LUCERNA_HAVE_PLY 1
-#endif
 
 namespace lu::build {
 
@@ -172,25 +168,19 @@ void BuildPlyMesh(BuildContext &ctx, const Placement &pl) {
         (void)p.GetOneFloat("edgelength", 1);
         ctx.diag.Unsupported(ParamLoc(p, "displacement", sh.loc), "plymesh \"displacement\"", "the mesh is not displaced");
     }
-    std::string path = ResolvePath(sh.baseDirectory.empty() ? ctx.desc.baseDirectory : sh.baseDirectory, filename);
-#ifdef LUCERNA_HAVE_PLY
-    PlyMesh ply = ReadPlyMesh(path, sh.loc);
+    std::string path = ResolveScenePath(ctx, sh.baseDirectory, filename);
+    PlyMesh ply = ReadPlyMesh(path, sh.loc, &ctx.diag);
     MeshData m;
-    m.P.reserve(ply.P.size());
-    for (const auto &v : ply.P) m.P.push_back(Vec3f(Float(v.x), Float(v.y), Float(v.z)));
-    for (const auto &v : ply.N) m.N.push_back(Vec3f(Float(v.x), Float(v.y), Float(v.z)));
-    for (const auto &v : ply.uv) m.uv.push_back(Vec2f(Float(v.x), Float(v.y)));
-    m.indices.reserve(ply.indices.size());
-    for (auto i : ply.indices) {
-        if (i < 0) Fail(sh.loc, "plymesh " + Quoted(filename) + ": negative vertex index");
-        m.indices.push_back(uint32_t(i));
-    }
+    m.P = std::move(ply.P);
+    m.N = std::move(ply.N);
+    m.uv = std::move(ply.uv);
+    m.indices = std::move(ply.indices);
+    if (ply.quadCount > 0)
+        ctx.diag.Warning(sh.loc, "plymesh " + Quoted(filename) + ": " + std::to_string(ply.quadCount) +
+                                     " quads rendered as triangle pairs (pbrt-v4 renders them as bilinear patches)");
     if (m.indices.empty()) Fail(sh.loc, "plymesh " + Quoted(filename) + ": no faces");
     CheckMesh(ctx, sh, m, "plymesh");
     AddTriangles(ctx, pl, m);
-#else
-    Fail(sh.loc, "plymesh " + Quoted(path) + ": this build has no PLY reader");
-#endif
 }
 
 // pbrt-v4's bilinear patches (vertices p00, p10, p01, p11), triangulated as (p00, p10, p11) and
@@ -390,10 +380,8 @@ void BuildShapes(BuildContext &ctx) {
             // pbrt-v4 orients analytic shapes in instance space, then transforms the normal.
             pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
             pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
-            bool first = reported.insert(&sh).second;
-            if (sh.areaLightIndex >= 0 && first)
-                ctx.diag.Warning(sh.loc, "area lights not supported with object instancing (as pbrt-v4): the shape does not emit");
-            BuildOne(ctx, pl, first);
+            // Area lights inside instances do not emit (pbrt-v4; the parser warns).
+            BuildOne(ctx, pl, reported.insert(&sh).second);
         }
     }
 }

@@ -82,4 +82,9 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
 // ParseSceneFile + BuildScene.
 std::unique_ptr<HostScene> LoadScene(const std::string &filename, Diagnostics &diag, const BuildOptions &opts);
 
+// The human-readable report `lucerna info` prints: resolution, camera, film, integrator and
+// sampler as read, shape / triangle / light / material counts by type, world bounds, every
+// warning and every unsupported feature by name (scene/scene_summary.cpp).
+std::string SceneSummary(const HostScene &scene, const Diagnostics &diag);
+
 }  // namespace lu

@@ -1,0 +1,60 @@
+// Lucerna scene builder: the text report of a built scene printed by `lucerna info`.
+#include <cstdio>
+#include <sstream>
+
+#include "lucerna/scene/builder.h"
+
+namespace lu {
+
+namespace {
+
+std::string Fmt(const char *fmt, double a = 0, double b = 0, double c = 0) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, fmt, a, b, c);
+    return buf;
+}
+
+std::string Vec(const Vec3f &v) { return Fmt("(%.6g, %.6g, %.6g)", v.x, v.y, v.z); }
+
+// "N (a 1, b 2)"
+std::string Counts(const std::map<std::string, int> &m) {
+    int total = 0;
+    std::string parts;
+    for (const auto &[name, n] : m) {
+        total += n;
+        parts += (parts.empty() ? "" : ", ") + name + " " + std::to_string(n);
+    }
+    return std::to_string(total) + (parts.empty() ? "" : " (" + parts + ")");
+}
+
+}  // namespace
+
+std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
+    const SceneStats &st = s.stats;
+    const RenderSettings &rs = s.settings;
+    std::ostringstream o;
+    o << "resolution: " << s.film.width << " x " << s.film.height << "\n";
+    o << "camera: " << st.cameraType << ", fov " << Fmt("%.6g", st.fov) << " deg, position " << Vec(st.cameraPosition)
+      << ", direction " << Vec(st.cameraDirection) << "\n";
+    o << "film: imaging ratio " << Fmt("%.6g", s.film.imagingRatio) << ", filter " << st.filterType
+      << Fmt(" (radius %.6g x %.6g)", s.filter.radiusX, s.filter.radiusY) << "\n";
+    o << "integrator: " << (rs.integratorAsRead.empty() ? std::string("(none given)") : rs.integratorAsRead)
+      << " -> " << rs.integrator << ", maxdepth " << rs.maxDepth << "\n";
+    o << "sampler: " << rs.sampler << ", " << rs.spp << " spp, seed " << rs.seed << "\n";
+    if (!rs.outputFilename.empty()) o << "output: " << rs.outputFilename << "\n";
+    o << "shapes: " << Counts(st.shapesByType) << "\n";
+    o << "triangles: " << st.triangles << "\n";
+    o << "lights: " << Counts(st.lightsByType) << "\n";
+    o << "materials: " << Counts(st.materialsByType) << "\n";
+    o << "textures: " << st.floatTextures << " float, " << st.spectrumTextures << " spectrum\n";
+    o << "instances: " << st.instanceDefinitions << " definitions, " << st.instanceUses << " uses\n";
+    if (s.bounds.Empty()) o << "bounds: empty\n";
+    else o << "bounds: " << Vec(s.bounds.pMin) << " - " << Vec(s.bounds.pMax) << "\n";
+    o << "warnings: " << diag.warnings.size() << "\n";
+    for (const std::string &w : diag.warnings) o << "  " << w << "\n";
+    o << "unsupported: " << diag.unsupported.size() << "\n";
+    for (const std::string &u : diag.unsupported) o << "  " << u << "\n";
+    return o.str();
+}
+
+}  // namespace lu
