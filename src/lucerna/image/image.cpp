@@ -31,7 +31,7 @@ namespace {
 
 // Upper bound on values (width * height * channels) an image file may declare: a corrupt header
 // must give an ImageError, not a huge allocation.
-constexpr size_t MaxImageValues = size_t(1) << 31;
+constexpr size_t MaxImageValues = size_t(1) << 30;
 
 std::string Lower(std::string s) {
     for (char &c : s) c = char(std::tolower((unsigned char)c));
@@ -116,7 +116,7 @@ Image ReadEXR(const std::string &filename, ImageMetadata *metadata) {
             names = {only};
         }
         size_t values = size_t(w) * size_t(h) * names.size();
-        if (w > (1 << 20) || h > (1 << 20) || values > MaxImageValues)
+        if (w > (1 << 16) || h > (1 << 16) || values > MaxImageValues)
             Fail(filename, "image too large (" + std::to_string(w) + "x" + std::to_string(h) + ")");
 
         Image image;
@@ -198,7 +198,7 @@ bool DecodePng(PngDecoded *d) {
         return false;
     }
     png_set_read_fn(png, d, PngReadCallback);
-    png_set_user_limits(png, 1 << 20, 1 << 20);
+    png_set_user_limits(png, 1 << 16, 1 << 16);
     png_read_info(png, info);
     png_uint_32 w = 0, h = 0;
     int bitDepth = 0, colorType = 0, interlace = 0;
