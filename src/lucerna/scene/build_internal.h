@@ -91,6 +91,7 @@ struct BuildContext {
     std::map<std::string, FloatTexture> floatTextureCache;
     std::map<std::pair<std::string, int>, SpectrumTexture> spectrumTextureCache;
     std::set<std::string> texturesBuilding;  // cycle detection
+    std::map<const TextureEntity *, uint32_t> textureImages;  // imagemap entity -> images index
 
     // Materials: desc.materials[i] -> scene.materials index (NoIndex: interface).
     std::vector<uint32_t> anonymousMaterials;

@@ -102,6 +102,14 @@ struct ImageTexParams {
 // pbrt-v4's FloatImageTexture / SpectrumImageTexture::Create parameters.
 ImageTexParams ReadImageTexture(BuildContext &ctx, const TextureEntity &te) {
     const ParameterDictionary &p = te.params;
+    if (auto it = ctx.textureImages.find(&te); it != ctx.textureImages.end()) {
+        // Already interpreted (spectrum textures are built once per spectrum type).
+        ImageTexParams r;
+        r.image = it->second;
+        r.scale = Float(p.GetOneFloat("scale", 1));
+        r.invert = p.GetOneBool("invert", false);
+        return r;
+    }
     // Filtering: Lucerna looks textures up bilinearly without MIP-mapping.
     std::string filter = p.GetOneString("filter", "bilinear");
     (void)p.GetOneFloat("maxanisotropy", 8);
@@ -140,6 +148,7 @@ ImageTexParams ReadImageTexture(BuildContext &ctx, const TextureEntity &te) {
                                                               Quoted(filename) + " is read as linear");
     LoadedImage img = LoadImage(ctx, path, linear || !isPNG, te.loc);
     r.image = AddImageData(ctx, img, wrap);
+    ctx.textureImages[&te] = r.image;
     return r;
 }
 

@@ -1,0 +1,73 @@
+// Tests of `lucerna info`: the SceneSummary report, and the command's output and exit codes
+// (the latter skipped when the lucerna binary has not been built).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "lucerna/scene/builder.h"
+#include "support/test_support.h"
+
+namespace lu {
+namespace {
+
+bool Contains(const std::string &s, const std::string &what) { return s.find(what) != std::string::npos; }
+
+TEST(SceneSummary, ReportsWhatWasRead) {
+    Diagnostics diag;
+    diag.quiet = true;
+    auto s = LoadScene(test::SharedPath("scenes/bitterli-veach-bidir/scene-v4.pbrt"), diag, BuildOptions{});
+    std::string r = SceneSummary(*s, diag);
+    EXPECT_TRUE(Contains(r, "resolution: 1024 x 1024")) << r;
+    EXPECT_TRUE(Contains(r, "camera: perspective, fov 35 deg")) << r;
+    EXPECT_TRUE(Contains(r, "integrator: bdpt -> path, maxdepth 7")) << r;
+    EXPECT_TRUE(Contains(r, "sampler: independent, 64 spp")) << r;
+    EXPECT_TRUE(Contains(r, "shapes: 14 (plymesh 12, trianglemesh 2)")) << r;
+    EXPECT_TRUE(Contains(r, "triangles: 11544")) << r;
+    EXPECT_TRUE(Contains(r, "lights: 4 (diffuse area 4)")) << r;
+    EXPECT_TRUE(Contains(r, "materials: 4 (conductor 1, dielectric 1, diffuse 2)")) << r;
+    EXPECT_TRUE(Contains(r, "bounds: (")) << r;
+    EXPECT_TRUE(Contains(r, "unsupported: 1\n  Integrator \"bdpt\"")) << r;
+    // Every warning is listed.
+    EXPECT_TRUE(Contains(r, "warnings: " + std::to_string(diag.warnings.size()))) << r;
+    for (const std::string &w : diag.warnings) EXPECT_TRUE(Contains(r, w));
+}
+
+// Runs `lucerna info FILE`; returns the exit status and the combined output.
+int RunInfo(const std::string &file, std::string *out) {
+    std::string cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna info '" + file + "' 2>&1";
+    FILE *p = popen(cmd.c_str(), "r");
+    if (!p) return -1;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out->append(buf, n);
+    int status = pclose(p);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(InfoCommand, ExitCodesAndOutput) {
+    if (!std::filesystem::exists(std::string(LUCERNA_BINARY_DIR) + "/lucerna")) GTEST_SKIP() << "lucerna binary not built";
+    std::string out;
+    EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), &out), 0) << out;
+    EXPECT_TRUE(Contains(out, "resolution: 1024 x 1024")) << out;
+    EXPECT_TRUE(Contains(out, "triangles: 36")) << out;
+    EXPECT_TRUE(Contains(out, "lights: 2 (diffuse area 2)")) << out;
+
+    std::string dir = test::TempDir("info_cmd");
+    std::ofstream(dir + "/bad.pbrt") << "Film \"rgb\"\nCamera \"perspective\" \"float fov\" [ 180 ]\nWorldBegin\n";
+    std::string err;
+    EXPECT_EQ(RunInfo(dir + "/bad.pbrt", &err), 2) << err;
+    EXPECT_TRUE(Contains(err, "bad.pbrt:2:")) << err;
+    EXPECT_TRUE(Contains(err, "error:")) << err;
+    EXPECT_TRUE(Contains(err, "fov")) << err;
+
+    std::string media;
+    EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 2) << media;
+    EXPECT_TRUE(Contains(media, "MakeNamedMedium")) << media;
+}
+
+}  // namespace
+}  // namespace lu
