@@ -196,9 +196,9 @@ TEST(BVH, MatchesBruteForceExactly) {
             opt.spatialSplits = splits;
             GpuBVH bvh = BuildBVH(v, opt);
             SCOPED_TRACE(std::string(ns.name) + (splits ? " sbvh" : " binned"));
-            std::vector<Ray> rays = test::CoherentRays(v.bounds, 3, 16, 10);
-            std::vector<Ray> inc = test::IncoherentRays(v.bounds, 800, 11);
-            std::vector<Ray> seg = test::SegmentRays(v.bounds, 800, 12);
+            std::vector<Ray> rays = test::CoherentRays(v.bounds, 3, 12, 10);
+            std::vector<Ray> inc = test::IncoherentRays(v.bounds, 500, 11);
+            std::vector<Ray> seg = test::SegmentRays(v.bounds, 500, 12);
             rays.insert(rays.end(), inc.begin(), inc.end());
             rays.insert(rays.end(), seg.begin(), seg.end());
             size_t bad = 0, badAny = 0, hits = 0;
@@ -235,9 +235,9 @@ TEST(BVH, MatchesEmbree) {
         struct Set {
             const char *name;
             std::vector<Ray> rays;
-        } sets[] = {{"coherent", test::CoherentRays(v.bounds, 5, 64, 20)},
-                    {"incoherent", test::IncoherentRays(v.bounds, 20000, 21)},
-                    {"segments", test::SegmentRays(v.bounds, 20000, 22)}};
+        } sets[] = {{"coherent", test::CoherentRays(v.bounds, 4, 50, 20)},
+                    {"incoherent", test::IncoherentRays(v.bounds, 10000, 21)},
+                    {"segments", test::SegmentRays(v.bounds, 10000, 22)}};
         for (const Set &set : sets) {
             std::vector<HitRecord> ours = test::TraceClosestCpu(bvh, v, set.rays), theirs(set.rays.size());
             size_t anyBad = 0;
@@ -246,7 +246,7 @@ TEST(BVH, MatchesEmbree) {
                 anyBad += IntersectAny(bvh.View(), v, set.rays[i]) != ref.Occluded(set.rays[i]);
             }
             test::HitComparison c =
-                test::CompareHits(ours, theirs, set.rays, kRelTol, kAbsTol * Length(v.bounds.Diagonal()));
+                test::CompareHits(ours, theirs, set.rays, v, kRelTol, kAbsTol * Length(v.bounds.Diagonal()));
             std::printf("[ embree   ] %-8s %-10s %s, %zu occlusion\n", ns.name, set.name, c.Summary().c_str(), anyBad);
             EXPECT_LE(c.Disagreements(), kMaxDisagreement * c.rays) << ns.name << " " << set.name << ": " << c.Summary();
             EXPECT_LE(anyBad, kMaxDisagreement * c.rays) << ns.name << " " << set.name;

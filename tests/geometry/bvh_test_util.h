@@ -427,23 +427,49 @@ class EmbreeReference {
 struct HitComparison {
     size_t rays = 0, hits = 0;
     size_t hitMiss = 0;      // one side hits, the other misses
-    size_t otherPrim = 0;    // both hit at the same distance (within tolerance) but different primitives
+    size_t otherPrim = 0;    // both hit at the same distance but different primitives, and not a tie
+    size_t ties = 0;         // different primitives that both lie at that distance (shared edges,
+                             // coplanar overlaps): either answer is right; not a disagreement
     size_t distance = 0;     // both hit, distances differ beyond the tolerance
     size_t Disagreements() const { return hitMiss + otherPrim + distance; }
     std::string Summary() const {
-        char buf[200];
-        std::snprintf(buf, sizeof(buf), "%zu rays, %zu hits: %zu hit/miss, %zu other-primitive, %zu distance", rays,
-                      hits, hitMiss, otherPrim, distance);
+        char buf[240];
+        std::snprintf(buf, sizeof(buf),
+                      "%zu rays, %zu hits: %zu hit/miss, %zu other-primitive, %zu distance (%zu ties)", rays, hits,
+                      hitMiss, otherPrim, distance, ties);
         return buf;
     }
 };
 
+// Distance at which the ray meets one given primitive (Infinity if it misses), by the shared routines.
+inline Float PrimitiveDistance(const SceneView &scene, uint32_t shapeId, uint32_t prim, const Ray &ray) {
+    const Shape &shape = scene.shapes[shapeId];
+    Float t = Infinity, b1, b2;
+    bool hit = false;
+    if (shape.kind == ShapeKind::Triangles) {
+        uint32_t v[3];
+        TriangleVertices(scene, scene.triangleMeshes[shape.index], prim, v);
+        hit = IntersectTriangle(scene.positions[v[0]], scene.positions[v[1]], scene.positions[v[2]], ray, Infinity, &t,
+                                &b1, &b2);
+    } else if (shape.kind == ShapeKind::Sphere) {
+        hit = IntersectSphere(scene.spheres[shape.index], ray, Infinity, &t);
+    } else {
+        hit = IntersectDisk(scene.disks[shape.index], ray, Infinity, &t);
+    }
+    return hit ? t : Infinity;
+}
+
 // Distances agree when |ta - tb| <= relTol * max(ta, tb) + absTol / |d|: absTol (render-space
 // length, e.g. 1e-5 of the scene diagonal) covers rounding of hits very close to the origin.
+// Different primitives at an agreeing distance are a tie if the shared routines find both of
+// them at that distance (checked with `scene`).
 inline HitComparison CompareHits(const std::vector<HitRecord> &a, const std::vector<HitRecord> &b,
-                                 const std::vector<Ray> &rays, Float relTol, Float absTol) {
+                                 const std::vector<Ray> &rays, const SceneView &scene, Float relTol, Float absTol) {
     HitComparison c;
     c.rays = a.size();
+    auto close = [&](Float ta, Float tb, const Ray &r) {
+        return std::abs(ta - tb) <= relTol * Max(std::abs(ta), std::abs(tb)) + absTol / Length(r.d);
+    };
     for (size_t i = 0; i < a.size(); ++i) {
         if (a[i].Hit()) c.hits++;
         if (a[i].Hit() != b[i].Hit()) {
@@ -451,9 +477,14 @@ inline HitComparison CompareHits(const std::vector<HitRecord> &a, const std::vec
             continue;
         }
         if (!a[i].Hit()) continue;
-        Float tol = relTol * Max(std::abs(a[i].t), std::abs(b[i].t)) + absTol / Length(rays[i].d);
-        if (!(std::abs(a[i].t - b[i].t) <= tol)) c.distance++;
-        else if (a[i].shape != b[i].shape || a[i].primitive != b[i].primitive) c.otherPrim++;
+        if (!close(a[i].t, b[i].t, rays[i])) {
+            c.distance++;
+        } else if (a[i].shape != b[i].shape || a[i].primitive != b[i].primitive) {
+            Float ta = PrimitiveDistance(scene, b[i].shape, b[i].primitive, rays[i]);
+            Float tb = PrimitiveDistance(scene, a[i].shape, a[i].primitive, rays[i]);
+            if (close(ta, a[i].t, rays[i]) && close(tb, b[i].t, rays[i])) c.ties++;
+            else c.otherPrim++;
+        }
     }
     return c;
 }

@@ -35,7 +35,7 @@ void CompareCpuGpu(const SceneView &v, const std::vector<Ray> &rays, const char 
     std::vector<HitRecord> cpu = test::TraceClosestCpu(bvh, v, rays);
     std::vector<HitRecord> gpu = TraceClosestGpu(dev, rays);
     ASSERT_EQ(gpu.size(), rays.size());
-    test::HitComparison c = test::CompareHits(cpu, gpu, rays, kRelTol, 1e-6f * Length(bvh.bounds.Diagonal()));
+    test::HitComparison c = test::CompareHits(cpu, gpu, rays, v, kRelTol, 1e-6f * Length(bvh.bounds.Diagonal()));
     std::vector<uint8_t> occCpu = test::TraceAnyCpu(bvh, v, rays), occGpu = TraceAnyGpu(dev, rays);
     size_t occBad = 0;
     for (size_t i = 0; i < rays.size(); ++i) occBad += occCpu[i] != occGpu[i];

@@ -44,7 +44,7 @@ TEST(BVHSharedScenes, MatchEmbree) {
                 theirs[i] = ref.Closest(set.rays[i]);
                 anyBad += bool(occ[i]) != ref.Occluded(set.rays[i]);
             }
-            test::HitComparison c = test::CompareHits(ours, theirs, set.rays, kRelTol, absTol);
+            test::HitComparison c = test::CompareHits(ours, theirs, set.rays, v, kRelTol, absTol);
             std::printf("[ embree   ]   %-10s %s, %zu occlusion\n", set.name, c.Summary().c_str(), anyBad);
             EXPECT_LE(c.Disagreements(), kMaxDisagreement * c.rays) << set.name << ": " << c.Summary();
             EXPECT_LE(anyBad, kMaxDisagreement * c.rays) << set.name;

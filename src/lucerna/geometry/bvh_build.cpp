@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -111,87 +109,65 @@ void *CreateLeaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive *prims, 
     return leaf;
 }
 
-// Next float towards -inf / +inf (finite inputs; inline bit arithmetic, libm's nextafterf is a call).
-inline float NextDown(float f) {
-    if (f == 0) return -std::numeric_limits<float>::denorm_min();
-    uint32_t b;
-    std::memcpy(&b, &f, 4);
-    b = f > 0 ? b - 1 : b + 1;
-    std::memcpy(&f, &b, 4);
-    return f;
-}
-inline float NextUp(float f) { return -NextDown(-f); }
-
-// Rounds a double outward to float bounds.
-inline float RoundDown(double v) {
-    float f = float(v);
-    return double(f) > v ? NextDown(f) : f;
-}
-inline float RoundUp(double v) {
-    float f = float(v);
-    return double(f) < v ? NextUp(f) : f;
-}
-
 // Spatial split: clips the primitive (within its current, possibly already clipped bounds) at
-// `pos` along `dim`. Triangles are clipped exactly (conservatively rounded); analytic shapes
-// split their box.
+// `pos` along `dim`. Triangles are clipped exactly up to a conservative padding of the edge
+// crossings; analytic shapes split their box.
 void SplitPrimitive(const RTCBuildPrimitive *prim, unsigned int dim, float pos, RTCBounds *lOut, RTCBounds *rOut,
                     void *userPtr) {
     const BuildContext *ctx = static_cast<const BuildContext *>(userPtr);
     const PrimRef &ref = (*ctx->refs)[prim->primID];
-    float lo[3] = {prim->lower_x, prim->lower_y, prim->lower_z};
-    float hi[3] = {prim->upper_x, prim->upper_y, prim->upper_z};
-    float L[2][3], R[2][3];   // [0] = lower, [1] = upper
-    for (int i = 0; i < 3; ++i) {
-        L[0][i] = R[0][i] = INFINITY;
-        L[1][i] = R[1][i] = -INFINITY;
-    }
-    auto expand = [](float b[2][3], const double p[3]) {
-        for (int i = 0; i < 3; ++i) {
-            b[0][i] = std::min(b[0][i], RoundDown(p[i]));
-            b[1][i] = std::max(b[1][i], RoundUp(p[i]));
-        }
-    };
+    const float lo[3] = {prim->lower_x, prim->lower_y, prim->lower_z};
+    const float hi[3] = {prim->upper_x, prim->upper_y, prim->upper_z};
+    float lLo[3], lHi[3], rLo[3], rHi[3];
     if (ShapeKind(ref.kind) == ShapeKind::Triangles) {
-        const Vec3f v[3] = {ref.p0, ref.p1, ref.p2};
+        for (int i = 0; i < 3; ++i) {
+            lLo[i] = rLo[i] = INFINITY;
+            lHi[i] = rHi[i] = -INFINITY;
+        }
+        const float v[3][3] = {{ref.p0.x, ref.p0.y, ref.p0.z}, {ref.p1.x, ref.p1.y, ref.p1.z},
+                               {ref.p2.x, ref.p2.y, ref.p2.z}};
         for (int e = 0; e < 3; ++e) {
-            const Vec3f &a = v[e], &b = v[(e + 1) % 3];
-            double pa[3] = {a.x, a.y, a.z}, pb[3] = {b.x, b.y, b.z};
-            if (pa[dim] <= pos) expand(L, pa);
-            if (pa[dim] >= pos) expand(R, pa);
-            if ((pa[dim] < pos && pb[dim] > pos) || (pa[dim] > pos && pb[dim] < pos)) {
-                double t = (double(pos) - pa[dim]) / (pb[dim] - pa[dim]);
-                double c[3];
-                for (int i = 0; i < 3; ++i) c[i] = pa[i] + t * (pb[i] - pa[i]);
-                c[dim] = pos;
-                expand(L, c);
-                expand(R, c);
+            const float *a = v[e], *b = v[e == 2 ? 0 : e + 1];
+            float da = a[dim] - pos, db = b[dim] - pos;
+            if (a[dim] <= pos)
+                for (int i = 0; i < 3; ++i) { lLo[i] = std::min(lLo[i], a[i]); lHi[i] = std::max(lHi[i], a[i]); }
+            if (a[dim] >= pos)
+                for (int i = 0; i < 3; ++i) { rLo[i] = std::min(rLo[i], a[i]); rHi[i] = std::max(rHi[i], a[i]); }
+            if ((da < 0 && db > 0) || (da > 0 && db < 0)) {
+                float t = da / (da - db);
+                for (int i = 0; i < 3; ++i) {
+                    float c = i == int(dim) ? pos : a[i] + t * (b[i] - a[i]);
+                    // Rounding of t and of the lerp stays well below 16 ulp of |a| + |b|.
+                    float err = i == int(dim) ? 0.f : (std::abs(a[i]) + std::abs(b[i])) * 0x1p-20f;
+                    lLo[i] = std::min(lLo[i], c - err); lHi[i] = std::max(lHi[i], c + err);
+                    rLo[i] = std::min(rLo[i], c - err); rHi[i] = std::max(rHi[i], c + err);
+                }
             }
         }
         for (int i = 0; i < 3; ++i) {   // stay within the current bounds
-            L[0][i] = std::max(L[0][i], lo[i]); L[1][i] = std::min(L[1][i], hi[i]);
-            R[0][i] = std::max(R[0][i], lo[i]); R[1][i] = std::min(R[1][i], hi[i]);
+            lLo[i] = std::max(lLo[i], lo[i]); lHi[i] = std::min(lHi[i], hi[i]);
+            rLo[i] = std::max(rLo[i], lo[i]); rHi[i] = std::min(rHi[i], hi[i]);
         }
     } else {
         for (int i = 0; i < 3; ++i) {
-            L[0][i] = R[0][i] = lo[i];
-            L[1][i] = R[1][i] = hi[i];
+            lLo[i] = rLo[i] = lo[i];
+            lHi[i] = rHi[i] = hi[i];
         }
     }
-    L[1][dim] = std::min(L[1][dim], pos);
-    R[0][dim] = std::max(R[0][dim], pos);
+    lHi[dim] = std::min(lHi[dim], pos);
+    rLo[dim] = std::max(rLo[dim], pos);
     // An empty side (the plane misses the clipped piece) becomes a flat face on the plane.
-    for (auto *B : {L, R}) {
-        bool empty = false;
-        for (int i = 0; i < 3; ++i) empty |= !(B[0][i] <= B[1][i]);
-        if (empty)
-            for (int i = 0; i < 3; ++i) {
-                B[0][i] = i == int(dim) ? pos : lo[i];
-                B[1][i] = i == int(dim) ? pos : hi[i];
-            }
-    }
-    *lOut = RTCBounds{L[0][0], L[0][1], L[0][2], 0, L[1][0], L[1][1], L[1][2], 0};
-    *rOut = RTCBounds{R[0][0], R[0][1], R[0][2], 0, R[1][0], R[1][1], R[1][2], 0};
+    auto fixEmpty = [&](float *bLo, float *bHi) {
+        if (bLo[0] <= bHi[0] && bLo[1] <= bHi[1] && bLo[2] <= bHi[2]) return;
+        for (int i = 0; i < 3; ++i) {
+            bLo[i] = i == int(dim) ? pos : lo[i];
+            bHi[i] = i == int(dim) ? pos : hi[i];
+        }
+    };
+    fixEmpty(lLo, lHi);
+    fixEmpty(rLo, rHi);
+    *lOut = RTCBounds{lLo[0], lLo[1], lLo[2], 0, lHi[0], lHi[1], lHi[2], 0};
+    *rOut = RTCBounds{rLo[0], rLo[1], rLo[2], 0, rHi[0], rHi[1], rHi[2], 0};
 }
 
 // ---- Flattening into the GPU layout ----
