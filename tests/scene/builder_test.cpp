@@ -169,6 +169,65 @@ TEST(SharedScenes, RefusedScenesNameTheFeature) {
     EXPECT_EQ(n, 6);
 }
 
+// ---- Lucerna's own test scenes (scenes/test) ----
+
+std::unique_ptr<HostScene> LoadTestScene(const std::string &name, Diagnostics &diag) {
+    diag.quiet = true;
+    return LoadScene(test::SourcePath("scenes/test/" + name), diag, BuildOptions{});
+}
+
+TEST(TestScenes, AllBuildWithoutWarnings) {
+    for (const char *name : {"furnace.pbrt", "quad_light.pbrt", "features.pbrt"}) {
+        SCOPED_TRACE(name);
+        Diagnostics diag;
+        try {
+            LoadTestScene(name, diag);
+        } catch (const SceneError &e) {
+            FAIL() << e.Format();
+        }
+        EXPECT_TRUE(diag.unsupported.empty());
+        for (const std::string &w : diag.warnings) ADD_FAILURE() << w;
+    }
+}
+
+TEST(TestScenes, Features) {
+    Diagnostics diag;
+    auto s = LoadTestScene("features.pbrt", diag);
+    EXPECT_EQ(s->settings.integrator, "regpath");
+    EXPECT_EQ(s->settings.maxDepth, 8);
+    EXPECT_EQ(s->settings.sampler, "halton");
+    EXPECT_FLOAT_EQ(s->film.imagingRatio, 2);
+    EXPECT_EQ(s->filter.kind, FilterKind::Mitchell);
+    EXPECT_EQ(s->stats.lightsByType.at("point"), 1);
+    EXPECT_EQ(s->stats.lightsByType.at("spot"), 1);
+    EXPECT_EQ(s->stats.lightsByType.at("distant"), 1);
+    EXPECT_EQ(s->stats.lightsByType.at("infinite"), 1);
+    EXPECT_EQ(s->stats.lightsByType.at("diffuse area"), 1);
+    EXPECT_EQ(s->stats.triangles, 2u + 2 * 2);   // floor patch + two instanced quads
+    EXPECT_EQ(s->spheres.size(), 2u);
+    EXPECT_EQ(s->disks.size(), 2u);
+    EXPECT_EQ(s->stats.instanceUses, 2);
+    EXPECT_EQ(s->camera.lensRadius, 0.01f);
+    // The mirrored instance's triangles flip (handedness swap); the other's do not.
+    ASSERT_EQ(s->triangleMeshes.size(), 3u);
+    EXPECT_FALSE(s->triangleMeshes[1].flipNormals);
+    EXPECT_TRUE(s->triangleMeshes[2].flipNormals);
+    const Material &gold = s->materials[s->shapes[1].material];
+    EXPECT_EQ(gold.kind, MaterialKind::Conductor);
+    EXPECT_FLOAT_EQ(gold.uRoughness.value, 0.1f);  // the constant texture
+}
+
+TEST(TestScenes, QuadLight) {
+    Diagnostics diag;
+    auto s = LoadTestScene("quad_light.pbrt", diag);
+    ASSERT_EQ(s->lights.size(), 4u);
+    // The bilinear patch (area 1, two triangles) gets the whole "power" per patch, as pbrt-v4.
+    const double want = 10 / (3.14159265358979 * 1.0) / CIE_Y_integral;
+    EXPECT_NEAR(s->lights[2].scale / want, 1, 2e-3);
+    EXPECT_NEAR(s->lights[3].scale / want, 1, 2e-3);
+    EXPECT_TRUE(s->triangleMeshes[2].flipNormals);  // ReverseOrientation
+}
+
 // ---- Area light orientation ----
 
 const char *kQuadP = "\"point3 P\" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]";
