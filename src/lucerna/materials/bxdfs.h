@@ -70,7 +70,7 @@ LU_INLINE BSDFSample MakeBSDFSample(const SampledSpectrum &f, const Vec3f &wi, F
 struct DiffuseBxDF {
     SampledSpectrum R;
 
-    LU_HD DiffuseBxDF() = default;
+    DiffuseBxDF() = default;
     LU_HD explicit DiffuseBxDF(const SampledSpectrum &R) : R(R) {}
 
     LU_HD uint8_t Flags() const { return R ? BxDF_DiffuseReflection : BxDF_Unset; }
@@ -99,7 +99,7 @@ struct ConductorBxDF {
     TrowbridgeReitzDistribution mfDistrib;
     SampledSpectrum eta, k;
 
-    LU_HD ConductorBxDF() = default;
+    ConductorBxDF() = default;
     LU_HD ConductorBxDF(const TrowbridgeReitzDistribution &d, const SampledSpectrum &eta, const SampledSpectrum &k)
         : mfDistrib(d), eta(eta), k(k) {}
 
@@ -157,7 +157,7 @@ struct DielectricBxDF {
     Float eta = 1;
     TrowbridgeReitzDistribution mfDistrib;
 
-    LU_HD DielectricBxDF() = default;
+    DielectricBxDF() = default;
     LU_HD DielectricBxDF(Float eta, const TrowbridgeReitzDistribution &d) : eta(eta), mfDistrib(d) {}
 
     // True when every sample is a Dirac (smooth, or index-matched pass-through).
@@ -270,7 +270,7 @@ struct DielectricBxDF {
 struct ThinDielectricBxDF {
     Float eta = 1.5f;
 
-    LU_HD ThinDielectricBxDF() = default;
+    ThinDielectricBxDF() = default;
     LU_HD explicit ThinDielectricBxDF(Float eta) : eta(eta) {}
 
     LU_HD uint8_t Flags() const { return BxDF_Reflection | BxDF_Transmission | BxDF_Specular; }
@@ -326,7 +326,7 @@ struct CoatedDiffuseBxDF {
     // PDF(wi -> -w) of the presampled exit direction (f() and Sample_f agree; see coated_test).
     bool pbrtExitMIS = true;
 
-    LU_HD CoatedDiffuseBxDF() = default;
+    CoatedDiffuseBxDF() = default;
     LU_HD CoatedDiffuseBxDF(const DielectricBxDF &top, const DiffuseBxDF &bottom, Float thickness,
                             const SampledSpectrum &albedo, Float g, int maxDepth, int nSamples)
         : top(top), bottom(bottom), thickness(Max(thickness, FLT_MIN)), g(g), albedo(albedo),

@@ -38,7 +38,7 @@ LU_INLINE Float FrDielectric(Float cosTheta_i, Float eta) {
 // Minimal complex arithmetic for the conductor Fresnel term.
 struct Complex {
     Float re = 0, im = 0;
-    LU_HD Complex() = default;
+    Complex() = default;
     LU_HD constexpr Complex(Float re, Float im = 0) : re(re), im(im) {}
     LU_HD Complex operator+(Complex b) const { return {re + b.re, im + b.im}; }
     LU_HD Complex operator-(Complex b) const { return {re - b.re, im - b.im}; }
@@ -84,7 +84,7 @@ LU_INLINE SampledSpectrum FrComplex(Float cosTheta_i, const SampledSpectrum &eta
 struct TrowbridgeReitzDistribution {
     Float alphaX = 0, alphaY = 0;
 
-    LU_HD TrowbridgeReitzDistribution() = default;
+    TrowbridgeReitzDistribution() = default;
     LU_HD TrowbridgeReitzDistribution(Float ax, Float ay) : alphaX(ax), alphaY(ay) {}
 
     // pbrt-v4's remapping of the user-facing "roughness" parameter.
