@@ -309,6 +309,38 @@ TEST(ParseErrors, SingularShapeTransformWarns) {
     EXPECT_TRUE(std::isnan(d.shapes[0].renderFromObject.mInv.m[0][0]));
 }
 
+TEST(ParseErrors, AllocationIsBounded) {
+    // Attribute defaults are copied into every entity: the copies count against the budget
+    // (one unit per value and per parameter: 101 per shape here).
+    std::string text = "WorldBegin\nAttribute \"shape\" \"float x\" [";
+    for (int i = 0; i < 100; ++i) text += " 1";
+    text += " ]\n";
+    for (int i = 0; i < 20; ++i) text += "Shape \"sphere\"\n";
+    Diagnostics diag;
+    diag.quiet = true;
+    ParseOptions opt;
+    opt.maxTotalValues = 1000;
+    try {
+        ParseSceneString(text, "e.pbrt", diag, opt);
+        FAIL();
+    } catch (SceneError &e) {
+        EXPECT_EQ(e.Message(), "the scene has more than 1000 parameter values; refusing to read further");
+        EXPECT_EQ(e.Loc().line, 11);  // the 9th shape: 101 + 9 * 101 > 1000
+    }
+    // Nesting depth is bounded too.
+    opt.maxTotalValues = size_t(1) << 28;
+    opt.maxAttributeDepth = 8;
+    std::string nested = "WorldBegin\n";
+    for (int i = 0; i < 9; ++i) nested += "AttributeBegin\n";
+    try {
+        ParseSceneString(nested, "e.pbrt", diag, opt);
+        FAIL();
+    } catch (SceneError &e) {
+        EXPECT_EQ(e.Message(), "\"AttributeBegin\" nested more than 8 deep");
+        EXPECT_EQ(e.Loc().line, 10);
+    }
+}
+
 // The fuzzers' minimized crashers stay here as regression inputs: each must parse or throw a
 // SceneError, nothing else.
 TEST(ParseErrors, FuzzRegressionsDoNotCrash) {

@@ -163,6 +163,15 @@ Triple NormalizeT(Triple a) { double l = LengthT(a); return {a.x / l, a.y / l, a
 using ParamList = std::vector<ParsedParameter>;
 using SharedParams = std::shared_ptr<const ParamList>;
 
+// Attribute defaults as a chain of the Attribute directives in effect (newest last), so that
+// pushing the graphics state and adding defaults are O(1).
+struct AttributeNode {
+    ParamList params;
+    std::shared_ptr<const AttributeNode> prev;
+    size_t cost = 0;  // budget units of this node and all before it
+};
+using Attributes = std::shared_ptr<const AttributeNode>;
+
 struct GraphicsState {
     DMatrix ctm[2];                     // start and end time (pbrt's TransformSet)
     bool activeStart = true, activeEnd = true;
@@ -174,7 +183,7 @@ struct GraphicsState {
     SharedParams areaLightParams;
     FileLoc areaLightLoc;
     std::string insideMedium, outsideMedium;
-    SharedParams shapeAttributes, lightAttributes, materialAttributes, mediumAttributes, textureAttributes;
+    Attributes shapeAttributes, lightAttributes, materialAttributes, mediumAttributes, textureAttributes;
 };
 
 struct PushedState {
@@ -369,16 +378,18 @@ class Parser {
         state_.ctm[1] = r[1];
     }
     Transform CurrentTransform(const FileLoc &loc, const char *what);
-    ParameterDictionary MakeDict(ParamList params, const SharedParams &attributes);
+    ParameterDictionary MakeDict(ParamList params, const Attributes &attributes, const FileLoc &loc);
     void CountValues(size_t n, const FileLoc &loc) {
         totalValues_ += n;
         if (totalValues_ > opt_.maxTotalValues)
             throw SceneError(loc, "the scene has more than " + std::to_string(opt_.maxTotalValues) +
                                       " parameter values; refusing to read further");
     }
+    // Budget units: one per value and one per parameter.
+    static size_t Cost(const ParsedParameter &p) { return 1 + p.numbers.size() + p.strings.size() + p.bools.size(); }
     static size_t ValueCount(const ParamList &ps) {
         size_t n = 0;
-        for (const ParsedParameter &p : ps) n += p.numbers.size() + p.strings.size() + p.bools.size();
+        for (const ParsedParameter &p : ps) n += Cost(p);
         return n;
     }
     void Push(TokenStream &ts, char kind, const Token &dir) {
@@ -491,7 +502,7 @@ ParamList Parser::ReadParams(TokenStream &ts) {
         p.name = words[1];
         p.loc = t.Loc();
         ReadValues(ts, p, *ti, t);
-        CountValues(p.numbers.size() + p.strings.size() + p.bools.size(), p.loc);
+        CountValues(Cost(p), p.loc);
         if (p.type == "rgb") rgbSeen_ = true;
         params.push_back(std::move(p));
     }
@@ -616,13 +627,19 @@ Transform Parser::CurrentTransform(const FileLoc &loc, const char *what) {
     return t;
 }
 
-ParameterDictionary Parser::MakeDict(ParamList params, const SharedParams &attributes) {
-    if (!attributes || attributes->empty()) return ParameterDictionary(std::move(params));
-    // Attribute defaults come first so that the entity's own parameters (later) win; they may be
-    // unused without a warning (pbrt-v4's mayBeUnused).
-    ParamList all = *attributes;
-    CountValues(ValueCount(all), all.front().loc);
-    for (ParsedParameter &a : all) a.lookedUp = true;
+ParameterDictionary Parser::MakeDict(ParamList params, const Attributes &attributes, const FileLoc &loc) {
+    if (!attributes) return ParameterDictionary(std::move(params));
+    // Attribute defaults come first (oldest first) so that later ones and the entity's own
+    // parameters win; they may be unused without a warning (pbrt-v4's mayBeUnused).
+    CountValues(attributes->cost, loc);
+    std::vector<const AttributeNode *> chain;
+    for (const AttributeNode *n = attributes.get(); n; n = n->prev.get()) chain.push_back(n);
+    ParamList all;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+        for (const ParsedParameter &a : (*it)->params) {
+            all.push_back(a);
+            all.back().lookedUp = true;
+        }
     for (ParsedParameter &p : params) all.push_back(std::move(p));
     return ParameterDictionary(std::move(all));
 }
@@ -679,10 +696,10 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
     const std::string_view d = dir.raw;
     const FileLoc loc = dir.Loc();
     // Reads `"type" params...` into e, the attribute defaults of the state first.
-    auto entity = [&](SceneEntity &e, const SharedParams &attributes) {
+    auto entity = [&](SceneEntity &e, const Attributes &attributes) {
         e.name = ReadString(ts, dir, "type name");
         e.loc = loc;
-        e.params = MakeDict(ReadParams(ts), attributes);
+        e.params = MakeDict(ReadParams(ts), attributes, loc);
     };
     double v[16];
 
@@ -834,7 +851,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
     else if (d == "Attribute") {
         std::string target = ReadString(ts, dir, "target");
         ParamList params = ReadParams(ts);
-        SharedParams *slot = target == "shape"      ? &state_.shapeAttributes
+        Attributes *slot = target == "shape"      ? &state_.shapeAttributes
                              : target == "light"    ? &state_.lightAttributes
                              : target == "material" ? &state_.materialAttributes
                              : target == "medium"   ? &state_.mediumAttributes
@@ -843,9 +860,13 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         if (!slot)
             ts.Fail(dir, "unknown Attribute target \"" + target +
                              "\": must be \"shape\", \"light\", \"material\", \"medium\" or \"texture\"");
-        auto merged = std::make_shared<ParamList>(*slot ? **slot : ParamList());
-        for (ParsedParameter &p : params) merged->push_back(std::move(p));
-        *slot = std::move(merged);
+        if (!params.empty()) {
+            auto node = std::make_shared<AttributeNode>();
+            node->cost = ValueCount(params) + (*slot ? (*slot)->cost : 0);
+            node->params = std::move(params);
+            node->prev = *slot;
+            *slot = std::move(node);
+        }
     } else if (d == "ReverseOrientation") {
         RequireWorld(ts, dir);
         state_.reverseOrientation = !state_.reverseOrientation;
@@ -865,7 +886,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         e.loc = loc;
         ParamList params = ReadParams(ts);
         if (!mediumNames_.insert(e.name).second) ts.Fail(dir, "named medium \"" + e.name + "\" is already defined");
-        e.params = MakeDict(std::move(params), state_.mediumAttributes);
+        e.params = MakeDict(std::move(params), state_.mediumAttributes, loc);
         desc_.media.push_back(std::move(e));
     }
     // ---- materials and textures ----
@@ -883,7 +904,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         if (desc_.namedMaterials.count(name)) ts.Fail(dir, "named material \"" + name + "\" is already defined");
         SceneEntity e;
         e.loc = loc;
-        e.params = MakeDict(std::move(params), state_.materialAttributes);
+        e.params = MakeDict(std::move(params), state_.materialAttributes, loc);
         const ParsedParameter *type = nullptr;
         for (const ParsedParameter &p : e.params.All())
             if (p.name == "type") type = &p;
@@ -912,7 +933,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         auto &names = e.valueType == "float" ? floatTextureNames_ : spectrumTextureNames_;
         if (!names.insert(e.textureName).second)
             ts.Fail(dir, e.valueType + " texture \"" + e.textureName + "\" is already defined");
-        e.params = MakeDict(std::move(params), state_.textureAttributes);
+        e.params = MakeDict(std::move(params), state_.textureAttributes, loc);
         e.renderFromObject = CurrentTransform(loc, "Texture");
         e.baseDirectory = fileDir;
         (e.valueType == "float" ? desc_.floatTextures : desc_.spectrumTextures).push_back(std::move(e));
@@ -949,7 +970,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
             light.loc = state_.areaLightLoc;
             ParamList lp = state_.areaLightParams ? *state_.areaLightParams : ParamList();
             CountValues(ValueCount(lp), loc);
-            light.params = MakeDict(std::move(lp), state_.lightAttributes);
+            light.params = MakeDict(std::move(lp), state_.lightAttributes, loc);
             desc_.areaLights.push_back(std::move(light));
             e.areaLightIndex = int(desc_.areaLights.size()) - 1;
             if (!activeInstance_.empty()) diag_.Warning(loc, "area lights are not supported with object instancing");
