@@ -1,7 +1,6 @@
-// Lucerna: the BSDF at a surface point (a tagged union of the BxDFs plus the shading frame) and
-// MakeBSDF, which evaluates a material's textures and builds it (host and device).
-// Follows pbrt-v4's bsdf.h and materials.h (GetBxDF of each material); adds SpecularLobes, the
-// Dirac lobes that the regularized connection needs.
+// Lucerna: the BSDF at a surface point (tagged union of the BxDFs + shading frame) and MakeBSDF,
+// which evaluates a material's textures (host and device). Follows pbrt-v4's bsdf.h and the
+// materials' GetBxDF; adds SpecularLobes, the Dirac lobes the regularized connection needs.
 #pragma once
 
 #include "lucerna/core/interaction.h"
@@ -120,6 +119,17 @@ struct BSDF {
         return lu::IsSpecular(fl) && !IsNonSpecular(fl);
     }
     LU_HD explicit operator bool() const { return kind != BxDFKind::None; }
+
+    // Directional albedo estimate (pbrt-v4's BSDF::rho): mean of f |cos| / pdf over n samples.
+    LU_HD SampledSpectrum rho(Vec3f woRender, const Float *uc, const Vec2f *u2, int n) const {
+        SampledSpectrum r(0);
+        if (n <= 0) return r;
+        for (int i = 0; i < n; ++i) {
+            BSDFSample bs;
+            if (Sample_f(woRender, uc[i], u2[i], &bs)) r += bs.f * (AbsDot(bs.wi, shadingFrame.z) / bs.pdf);
+        }
+        return r / Float(n);
+    }
 
     // The Dirac lobes for outgoing direction woRender; returns their number (0..2). A coated
     // diffuse with a smooth coat reports its coat reflection (the rest of it is not Dirac).

@@ -1,7 +1,6 @@
-// Lucerna: scattering building blocks shared by the BxDFs (host and device): Fresnel equations
-// (dielectric and complex/conductor), the anisotropic Trowbridge-Reitz (GGX) microfacet
-// distribution with visible-normal sampling, and the Henyey-Greenstein phase function.
-// Follows pbrt-v4's util/scattering.h and util/sampling.h (same conventions and edge cases).
+// Lucerna: scattering building blocks of the BxDFs (host and device): dielectric and conductor
+// Fresnel, the anisotropic Trowbridge-Reitz distribution with visible-normal sampling, and the
+// Henyey-Greenstein phase function. Follows pbrt-v4's util/scattering.h and util/sampling.h.
 #pragma once
 
 #include "lucerna/util/vecmath.h"

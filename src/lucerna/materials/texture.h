@@ -1,7 +1,6 @@
-// Lucerna: float and spectrum texture evaluation at a surface point (host and device):
-// constant, 2D checkerboard and bilinearly filtered image maps over pbrt-v4's uv mapping.
-// Follows pbrt-v4's textures.h/.cpp and util/image.h (Bilerp, wrap modes); no ray differentials,
-// so lookups are point-sampled at the finest level (pbrt-v4 filters by pixel footprint).
+// Lucerna: float and spectrum textures at a surface point (host and device): constant, 2D
+// checkerboard, bilinear image maps over pbrt-v4's uv mapping (textures.cpp, Image::Bilerp).
+// No ray differentials: lookups use the finest level unfiltered (pbrt-v4 filters by footprint).
 #pragma once
 
 #include "lucerna/core/interaction.h"
