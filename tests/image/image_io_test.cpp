@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -306,6 +307,38 @@ TEST(ImageIO, CorruptedBytesNeverCrash) {
     }
     EXPECT_GT(errors, 0);  // corruption was noticed at least sometimes (PNG CRCs, EXR headers)
     EXPECT_EQ(errors + reads, 300);
+}
+
+}  // namespace
+}  // namespace lu
+
+namespace lu {
+namespace {
+
+// pbrt-v4's own EXRs: every shared reference reads with the resolution and spp of its .txt.
+TEST(ImageIO, ReadsTheSharedReferences) {
+    std::string refs = test::SharedPath("refs");
+    if (!fs::exists(refs)) GTEST_SKIP() << refs << " missing";
+    int count = 0;
+    for (auto &entry : fs::directory_iterator(refs)) {
+        if (entry.path().extension() != ".exr") continue;
+        std::string txt = (entry.path().parent_path() / (entry.path().stem().string() + ".txt")).string();
+        std::ifstream in(txt);
+        std::string text((std::istreambuf_iterator<char>(in)), {});
+        int w = 0, h = 0, spp = 0;
+        size_t at = text.find("resolution: ");
+        ASSERT_NE(at, std::string::npos) << txt;
+        ASSERT_EQ(std::sscanf(text.c_str() + at, "resolution: %dx%d spp: %d", &w, &h, &spp), 3) << txt;
+        ImageMetadata meta;
+        Image im = ReadImage(entry.path().string(), false, &meta);
+        EXPECT_EQ(im.width, w) << entry.path();
+        EXPECT_EQ(im.height, h) << entry.path();
+        EXPECT_EQ(im.channels, 3);
+        EXPECT_EQ(CountNonFinite(im), 0u);
+        EXPECT_EQ(meta["samplesPerPixel"], std::to_string(spp));
+        ++count;
+    }
+    EXPECT_GT(count, 0);
 }
 
 }  // namespace
