@@ -65,6 +65,28 @@ TEST(Fresnel, Conductor) {
     }
 }
 
+TEST(Scattering, HenyeyGreensteinSampling) {
+    // pbrt-v4 convention: wo and wi point away, so the mean of dot(wo, wi) is -g; the returned
+    // pdf is the phase function value (perfect importance sampling), which integrates to 1.
+    Vec3f wo = Normalize(Vec3f(0.3f, -0.4f, 0.5f));
+    for (Float g : {-0.7f, -0.2f, 0.f, 0.5f, 0.9f}) {
+        RNG rng(31, 7);
+        double sumCos = 0;
+        const int n = 200000;
+        for (int i = 0; i < n; ++i) {
+            Float pdf;
+            Vec3f wi = SampleHenyeyGreenstein(wo, g, Vec2f(rng.UniformFloat(), rng.UniformFloat()), &pdf);
+            ASSERT_NEAR(Length(wi), 1, 1e-4f);
+            ASSERT_NEAR(pdf, HenyeyGreenstein(Dot(wo, wi), g), 2e-3f * pdf);
+            sumCos += Dot(wo, wi);
+        }
+        EXPECT_NEAR(sumCos / n, -g, 0.006) << "g " << g;
+        double integral = 0;
+        for (int i = 0; i < 2000; ++i) integral += 2 * Pi * HenyeyGreenstein(-1 + 2 * (i + 0.5f) / 2000, g) * (2.0 / 2000);
+        EXPECT_NEAR(integral, 1, 2e-3) << "g " << g;
+    }
+}
+
 // ---- White furnaces ----
 
 TEST(Energy, DiffuseAlbedoIsReflectance) {
