@@ -273,7 +273,7 @@ def table(rows, path_rel=True):
             best[key] = min(vals)
     out = ["<table><tr><th>integrator</th><th>runs</th>" + "".join(f"<th>{t}</th>" for _, t, _ in cols)]
     if path_rel and "path" in rows:
-        out[0] += "<th>relMSE / path's</th>"
+        out[0] += "<th>relMSE &divide; path</th>"
     out[0] += "</tr>"
     for n in names:
         r = rows[n]
@@ -396,7 +396,8 @@ def write_report(d, crops):
         boxes, regions = make_crops(d, b, integrators, crops)
         if regions:
             regions_all[b] = [{k: v for k, v in r.items() if k != "files"} for r in regions]
-            parts.append(f"<h3>Where they differ most ({label.lower()})</h3>")
+            what = "Where they differ most" if len(regions[0]["files"]) > 2 else "Largest errors"
+            parts.append(f"<h3>{what} ({label.lower()})</h3>")
             parts.append(crops_html(boxes, regions, integrators))
     if regions_all:
         with open(os.path.join(d, "crops", "regions.json"), "w") as f:
