@@ -2,6 +2,8 @@
 // shared scene: camera, bounce, incoherent and segment rays. Runs without a GPU.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "gpu/gpu_test_util.h"
 
 namespace lu {
@@ -51,6 +53,39 @@ TEST(BVHSharedScenes, MatchEmbree) {
             if (std::string(set.name) == "camera") {
                 EXPECT_GT(c.hits, c.rays / 4) << "the camera should see the scene";
             }
+        }
+    }
+}
+
+// Single-thread CPU throughput of the shared traversal next to Embree's rtcIntersect1 on the same
+// rays (context for the GPU numbers). Disabled in test runs: bench/gpu/rays_bench.sh runs it.
+TEST(BVHSharedScenes, DISABLED_CpuThroughput) {
+    using Clock = std::chrono::steady_clock;
+    for (const std::string &file : test::SharedSceneFiles()) {
+        std::unique_ptr<HostScene> host = test::LoadSharedScene(file);
+        SceneView v = host->View();
+        GpuBVH bvh = BuildBVH(v);
+        BVHBuildOptions binnedOpt;
+        binnedOpt.spatialSplits = false;
+        GpuBVH binned = BuildBVH(v, binnedOpt);
+        test::EmbreeReference ref(v);
+        std::vector<Ray> camera = test::CameraRays(v.camera, 256, 1);
+        std::vector<Ray> bounce = test::BounceRays(v, camera, test::TraceClosestCpu(bvh, v, camera), 2);
+        for (const auto &[name, rays] : {std::pair<const char *, const std::vector<Ray> &>{"camera", camera},
+                                         std::pair<const char *, const std::vector<Ray> &>{"bounce", bounce}}) {
+            auto time = [&](auto &&fn) {
+                auto t0 = Clock::now();
+                size_t hits = 0;
+                for (const Ray &r : rays) hits += fn(r);
+                double s = std::chrono::duration<double>(Clock::now() - t0).count();
+                EXPECT_GT(hits, 0u);
+                return rays.size() / s * 1e-6;
+            };
+            double ours = time([&](const Ray &r) { HitRecord h; return IntersectClosest(bvh.View(), v, r, &h); });
+            double bin = time([&](const Ray &r) { HitRecord h; return IntersectClosest(binned.View(), v, r, &h); });
+            double emb = time([&](const Ray &r) { return ref.Closest(r).Hit(); });
+            std::printf("[ cpu Mr/s ] %-52s %-7s sbvh %6.2f  binned %6.2f  embree %6.2f  (sbvh build %.0f ms, binned %.0f ms)\n",
+                        file.c_str(), name, ours, bin, emb, bvh.stats.buildSeconds * 1e3, binned.stats.buildSeconds * 1e3);
         }
     }
 }
