@@ -59,7 +59,10 @@ RenderStats RenderCPU(const HostScene &hs, const RenderJob &job, FilmAccumulator
     PassBuffer pass;
     pass.Resize(width, height);
     auto t0 = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    double callbackSeconds = 0;   // time spent in onPass (error metrics, checkpoints): not render time
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - callbackSeconds;
+    };
     constexpr int kTile = 16;
 
     while (film.passes < uint32_t(job.spp)) {
@@ -126,7 +129,12 @@ RenderStats RenderCPU(const HostScene &hs, const RenderJob &job, FilmAccumulator
         });
         stats.seconds = elapsed();
         if (job.progress) PrintProgress(film.passes, uint32_t(job.spp), stats.seconds, stats.samples / std::max(1e-9, stats.seconds), job.timeLimit, false);
-        if (onPass && !onPass(film, stats)) break;
+        if (onPass) {
+            auto c0 = std::chrono::steady_clock::now();
+            bool more = onPass(film, stats);
+            callbackSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+            if (!more) break;
+        }
         if (job.timeLimit > 0 && stats.seconds >= job.timeLimit) break;
     }
     stats.seconds = elapsed();

@@ -1,0 +1,241 @@
+// Lucerna CLI: `lucerna converge` — render each integrator progressively (K runs with different
+// seeds), compute the error against a reference at checkpoints without re-rendering (powers of
+// two in spp and twelve points in time), and write DIR/convergence.csv, final.csv, run.json,
+// images at equal time and equal spp, then the plots and index.html (scripts/*.py). The
+// directory layout is specified in docs/convergence.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "apps/render_common.h"
+#include "lucerna/image/image.h"
+#include "lucerna/image/metrics.h"
+
+#ifndef LUCERNA_SOURCE_DIR
+#define LUCERNA_SOURCE_DIR "."
+#endif
+
+namespace lu::app {
+
+namespace {
+
+struct ConvergeArgs {
+    std::string scene, ref, integrators = "path,regpath", res, outDir, device = "auto";
+    double time = 0;
+    int spp = 0, runs = 1, threads = 0, maxDepth = -1;
+    long long seed = 0;
+    double regRadius = -1;
+    bool noReport = false;
+};
+
+struct Snapshot {
+    uint32_t spp;
+    double seconds;
+    Image image;
+};
+
+std::vector<std::string> Split(const std::string &s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::string Num(double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+
+// The snapshot with the largest key <= limit (key = spp or seconds); the first one if none.
+const Snapshot &PickSnapshot(const std::vector<Snapshot> &snaps, bool bySpp, double limit) {
+    const Snapshot *best = &snaps.front();
+    for (const Snapshot &s : snaps)
+        if ((bySpp ? double(s.spp) : s.seconds) <= limit + 1e-9) best = &s;
+    return *best;
+}
+
+void WriteBudgetImages(const std::string &dir, const std::string &integ, const std::string &budget, const Snapshot &s,
+                       uint32_t seed) {
+    ImageMetadata meta{{"lucerna.integrator", integ}, {"lucerna.spp", std::to_string(s.spp)},
+                       {"lucerna.seconds", Num(s.seconds)}, {"lucerna.run", "0"}, {"lucerna.seed", std::to_string(seed)}};
+    WriteEXR(dir + "/" + integ + "_" + budget + ".exr", s.image, meta);
+    WritePNG(dir + "/" + integ + "_" + budget + ".png", s.image);
+}
+
+int RunConverge(const ConvergeArgs &a) {
+    if ((a.time > 0) == (a.spp > 0)) {
+        std::fprintf(stderr, "lucerna converge: give exactly one of --time SECONDS or --spp N\n");
+        return ExitBadInput;
+    }
+    Image ref;
+    try {
+        ref = ReadImage(a.ref);
+    } catch (const ImageError &e) {
+        std::fprintf(stderr, "lucerna converge: %s\n", e.what());
+        return ExitBadInput;
+    }
+    std::vector<std::string> integrators = Split(a.integrators);
+    if (integrators.empty()) {
+        std::fprintf(stderr, "lucerna converge: --integrators is empty\n");
+        return ExitBadInput;
+    }
+    std::filesystem::create_directories(a.outDir);
+    std::ofstream csv(a.outDir + "/convergence.csv");
+    csv << "integrator,run,spp,seconds,mse,rmse,relmse,mape\n";
+
+    std::map<std::string, std::vector<std::vector<Snapshot>>> snaps;   // integrator -> run -> snapshots
+    std::string deviceName = "cpu";
+    int width = 0, height = 0;
+    for (const std::string &integ : integrators) {
+        for (int run = 0; run < a.runs; ++run) {
+            RenderRequest req;
+            req.sceneFile = a.scene;
+            req.integrator = integ;
+            req.res = a.res;
+            req.spp = a.spp;
+            req.time = a.time;
+            req.seed = a.seed + run;
+            req.threads = a.threads;
+            req.maxDepth = a.maxDepth;
+            req.regRadius = a.regRadius;
+            req.device = a.device;
+            req.progress = false;
+            Prepared prep;
+            int rc = PrepareRender(req, &prep);
+            if (rc != ExitOk) return rc;
+            const FilmData &filmData = prep.scene->View().film;
+            if (filmData.width != ref.width || filmData.height != ref.height) {
+                std::fprintf(stderr, "lucerna converge: the render is %dx%d but the reference is %dx%d (use --res %dx%d)\n",
+                             filmData.width, filmData.height, ref.width, ref.height, ref.width, ref.height);
+                return ExitBadInput;
+            }
+            width = filmData.width;
+            height = filmData.height;
+            std::vector<Snapshot> &runSnaps = snaps[integ].emplace_back();
+            int nextTimePoint = 1;
+            constexpr int kTimePoints = 12;
+            PassCallback onPass = [&](const FilmAccumulator &film, const RenderStats &st) {
+                uint32_t spp = film.passes;
+                bool pow2 = (spp & (spp - 1)) == 0;
+                bool timePoint = false;
+                if (a.time > 0)
+                    while (nextTimePoint <= kTimePoints && st.seconds >= a.time * nextTimePoint / kTimePoints) {
+                        timePoint = true;
+                        ++nextTimePoint;
+                    }
+                bool last = (a.spp > 0 && int(spp) >= a.spp) || (a.time > 0 && st.seconds >= a.time);
+                if (!pow2 && !timePoint && !last) return true;
+                Image img = film.Resolve(filmData);
+                ErrorStats e = ComputeErrors(img, ref);
+                csv << integ << ',' << run << ',' << spp << ',' << Num(st.seconds) << ',' << Num(e.mse) << ','
+                    << Num(e.rmse) << ',' << Num(e.relMSE) << ',' << Num(e.mape) << '\n';
+                runSnaps.push_back({spp, st.seconds, std::move(img)});
+                return true;
+            };
+            FilmAccumulator film;
+            RenderOutcome out;
+            rc = RunBackend(prep, film, onPass, &out);
+            if (rc != ExitOk) return rc;
+            deviceName = out.device;
+            std::fprintf(stderr, "converge: %s run %d: %u spp in %.2f s, final relMSE %s\n", integ.c_str(), run, film.passes,
+                         out.stats.seconds, runSnaps.empty() ? "-" : Num(ComputeErrors(runSnaps.back().image, ref).relMSE).c_str());
+        }
+    }
+    csv.close();
+
+    // ---- Equal-time and equal-spp budgets (see docs/convergence.md) ----
+    double timeBudget = 1e300;
+    double sppBudget = 1e300;
+    for (const auto &integ : integrators) {
+        const Snapshot &last = snaps[integ][0].back();
+        timeBudget = std::min(timeBudget, last.seconds);
+        sppBudget = std::min(sppBudget, double(last.spp));
+    }
+    std::ofstream fin(a.outDir + "/final.csv");
+    fin << "integrator,budget,runs,spp,seconds,mse,rmse,relmse,mape,bias2,variance,relbias2,relvariance\n";
+    for (const auto &integ : integrators) {
+        for (const char *budget : {"time", "spp"}) {
+            bool bySpp = std::string(budget) == "spp";
+            std::vector<Image> images;
+            double spp = 0, secs = 0, mse = 0, rmse = 0, relmse = 0, mape = 0;
+            for (int run = 0; run < a.runs; ++run) {
+                const auto &rs = snaps[integ][run];
+                const Snapshot &s = (a.time > 0 && !bySpp) || (a.spp > 0 && bySpp)
+                                        ? rs.back()
+                                        : PickSnapshot(rs, bySpp, bySpp ? sppBudget : timeBudget);
+                if (run == 0) WriteBudgetImages(a.outDir, integ, budget, s, uint32_t(a.seed));
+                ErrorStats e = ComputeErrors(s.image, ref);
+                spp += s.spp; secs += s.seconds; mse += e.mse; rmse += e.rmse; relmse += e.relMSE; mape += e.mape;
+                images.push_back(s.image);
+            }
+            double k = a.runs;
+            fin << integ << ',' << budget << ',' << a.runs << ',' << Num(spp / k) << ',' << Num(secs / k) << ','
+                << Num(mse / k) << ',' << Num(rmse / k) << ',' << Num(relmse / k) << ',' << Num(mape / k);
+            if (a.runs > 1) {
+                BiasVariance bv = ComputeBiasVariance(images, ref);
+                fin << ',' << Num(bv.bias2) << ',' << Num(bv.variance) << ',' << Num(bv.relBias2) << ',' << Num(bv.relVariance);
+            } else {
+                fin << ",,,,";
+            }
+            fin << '\n';
+        }
+    }
+    fin.close();
+    WritePNG(a.outDir + "/reference.png", ref);
+    {
+        std::time_t now = std::time(nullptr);
+        char date[64];
+        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+        std::ofstream j(a.outDir + "/run.json");
+        j << "{\"scene\": \"" << a.scene << "\", \"reference\": \"" << a.ref << "\", \"width\": " << width
+          << ", \"height\": " << height << ", \"time\": " << (a.time > 0 ? Num(a.time) : "null")
+          << ", \"spp\": " << (a.spp > 0 ? std::to_string(a.spp) : "null") << ", \"runs\": " << a.runs
+          << ", \"integrators\": [";
+        for (size_t i = 0; i < integrators.size(); ++i) j << (i ? ", " : "") << '"' << integrators[i] << '"';
+        j << "], \"backend\": \"" << deviceName << "\", \"device\": \"" << deviceName << "\", \"date\": \"" << date << "\"}\n";
+    }
+    if (!a.noReport) {
+        std::string scripts = std::string(LUCERNA_SOURCE_DIR) + "/scripts";
+        std::string py = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+        std::string cmd = py + " '" + scripts + "/plot_convergence.py' '" + a.outDir + "' && " + py + " '" + scripts +
+                          "/make_report.py' '" + a.outDir + "'";
+        if (std::system(cmd.c_str()) != 0)
+            std::fprintf(stderr, "lucerna converge: warning: the plots/report could not be made (%s)\n", cmd.c_str());
+    }
+    std::printf("converge: wrote %s/convergence.csv, final.csv, index.html\n", a.outDir.c_str());
+    return ExitOk;
+}
+
+}  // namespace
+
+void RegisterConverge(CLI::App &app, CommandTable &table) {
+    auto args = std::make_shared<ConvergeArgs>();
+    CLI::App *sub = app.add_subcommand("converge", "Error against a reference per sample and per second, with plots and a report");
+    sub->add_option("scene", args->scene, "Scene file (.pbrt)")->required();
+    sub->add_option("--ref", args->ref, "Reference image (.exr)")->required();
+    sub->add_option("--integrators", args->integrators, "Comma-separated integrators (default path,regpath)");
+    sub->add_option("--time", args->time, "Time budget per run in seconds")->check(CLI::PositiveNumber);
+    sub->add_option("--spp", args->spp, "Samples per pixel per run")->check(CLI::Range(1, 1 << 24));
+    sub->add_option("--runs", args->runs, "Independent runs (seeds) per integrator")->check(CLI::Range(1, 1000));
+    sub->add_option("--res", args->res, "Resolution WxH (must match the reference)");
+    sub->add_option("--seed", args->seed, "Seed of run 0 (run k uses seed + k)")->check(CLI::Range(0LL, 4294967295LL));
+    sub->add_option("--threads", args->threads, "CPU threads")->check(CLI::Range(1, 4096));
+    sub->add_option("--maxdepth", args->maxDepth, "Maximum path depth")->check(CLI::Range(0, 100000));
+    sub->add_option("--reg-radius", args->regRadius, "regpath: initial radius r0");
+    sub->add_option("--device", args->device, "cpu, cuda or auto")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+    sub->add_flag("--no-report", args->noReport, "Skip the plots and index.html");
+    sub->add_option("-o,--output", args->outDir, "Output directory")->required();
+    table.Add(sub, [args] { return RunConverge(*args); });
+}
+
+}  // namespace lu::app
