@@ -107,7 +107,8 @@ LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, cons
             int i = k == 0 ? first : 1 - first;
             if (!boxHit[i]) continue;
             if (!n.IsLeaf(i)) {
-                next[nNext++] = n.child[i];
+                // A hit in the nearer leaf may already lie in front of this box.
+                if (tNear[i] <= tClosest) next[nNext++] = n.child[i];
                 continue;
             }
             uint32_t begin = n.FirstPrim(i), end = begin + n.count[i];
