@@ -60,6 +60,7 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
     job.threads = req.threads;
     job.progress = req.progress;
     job.samplerName = s.sampler;
+    job.samplerSpp = std::max(1, s.spp);
     job.regularize = integrator == "regpath";
     job.regLambda = req.regLambda >= 0 ? req.regLambda : s.regLambda;
     double r0 = req.regRadius > 0 ? req.regRadius : s.regRadius;
@@ -77,7 +78,7 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
     std::ostringstream key;
     key << std::filesystem::absolute(req.sceneFile).string() << '|' << out->scene->View().film.width << 'x'
         << out->scene->View().film.height << '|' << integrator << '|' << job.seed << '|' << job.maxDepth << '|'
-        << job.regRadius << '|' << job.regLambda << '|' << job.regAngle << '|' << job.samplerName;
+        << job.regRadius << '|' << job.regLambda << '|' << job.regAngle << '|' << job.samplerName << '|' << job.samplerSpp;
     out->sceneHash = Fnv1a(key.str());
     out->sceneFile = req.sceneFile;
     return ExitOk;

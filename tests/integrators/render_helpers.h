@@ -39,6 +39,7 @@ inline RenderResultForTest RenderScene(const HostScene &scene, int spp, int maxD
     job.regRadius = regRadius;
     job.regAngle = regAngle;
     job.samplerName = scene.settings.sampler;
+    job.samplerSpp = scene.settings.spp;
     FilmAccumulator film;
     RenderResultForTest r;
     r.stats = RenderCPU(scene, job, film);

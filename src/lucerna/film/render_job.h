@@ -22,6 +22,8 @@ struct RenderJob {
     int threads = 0;            // 0: all cores
     bool progress = true;       // progress bar on stderr
     std::string samplerName = "zsobol";
+    int samplerSpp = 16;        // the sampling pattern's size (the scene's Sampler "pixelsamples"): fixed
+                                // whatever the number of passes, so resumed or extended renders match
     int lightStrategy = 0;      // 0 MIS, 1 NEE only, 2 BSDF only (tests)
     const std::atomic<bool> *cancel = nullptr;  // set by SIGINT/SIGTERM: abandon the pass in flight
 };

@@ -54,7 +54,7 @@ RenderStats RenderCPU(const HostScene &hs, const RenderJob &job, FilmAccumulator
     EmbreeScene embree(scene);
     stats.buildSeconds = embree.BuildSeconds();
     EmbreeTracer tracer{&embree};
-    Sampler baseSampler = MakeSampler(job.samplerName, job.spp, int(job.seed), width, height);
+    Sampler baseSampler = MakeSampler(job.samplerName, job.samplerSpp, int(job.seed), width, height);
 
     PassBuffer pass;
     pass.Resize(width, height);
