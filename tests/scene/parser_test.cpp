@@ -223,6 +223,16 @@ TEST(Parser, MotionTransformsAreReportedUnsupported) {
     ExpectPoint(d.shapes[0].renderFromObject, Vec3f(0, 0, 0), Vec3f(0, 0, 0));  // the start transform
     ASSERT_EQ(diag.unsupported.size(), 1u);
     EXPECT_EQ(diag.unsupported[0], "motion blur (ActiveTransform)");
+    ASSERT_EQ(diag.warnings.size(), 2u);
+    EXPECT_EQ(diag.warnings[0], "t.pbrt:2:1: warning: ActiveTransform: motion blur is not supported; the start-time "
+                                "transformation is used");
+    EXPECT_EQ(diag.warnings[1], "t.pbrt:5:1: warning: motion blur (ActiveTransform) is not supported: the start-time "
+                                "transform is used");
+    // Without a difference between the start and end transformations nothing is unsupported.
+    Diagnostics quiet;
+    quiet.quiet = true;
+    Parse("WorldBegin\nActiveTransform StartTime\nActiveTransform All\nShape \"a\"\n", &quiet);
+    EXPECT_TRUE(quiet.unsupported.empty());
 }
 
 // ---- files ----

@@ -4,6 +4,8 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string_view>
 
 #include "lucerna/scene/description.h"
 
@@ -169,15 +171,16 @@ std::string ParameterDictionary::TypeOf(const std::string &name) const {
 }
 
 void ParameterDictionary::ReportUnused(Diagnostics &diag, const std::string &owner) const {
-    for (size_t i = 0; i < params_.size(); ++i) {
-        const ParsedParameter &p = params_[i];
-        if (p.lookedUp) continue;
-        // A parameter shadowed by a later one of the same name and type that was used is fine.
-        bool shadowed = false;
-        for (size_t j = i + 1; j < params_.size() && !shadowed; ++j)
-            shadowed = params_[j].lookedUp && params_[j].name == p.name && params_[j].type == p.type;
-        if (!shadowed) diag.Warning(p.loc, "parameter " + Decl(p) + " is not used by " + owner);
+    // A parameter shadowed by a later one of the same name and type that was used is fine
+    // (pbrt-v4); walk backwards remembering the used (name, type) pairs.
+    std::set<std::pair<std::string_view, std::string_view>> used;
+    std::vector<const ParsedParameter *> unused;
+    for (auto it = params_.rbegin(); it != params_.rend(); ++it) {
+        if (it->lookedUp) used.emplace(it->name, it->type);
+        else if (!used.count({it->name, it->type})) unused.push_back(&*it);
     }
+    for (auto it = unused.rbegin(); it != unused.rend(); ++it)
+        diag.Warning((*it)->loc, "parameter " + Decl(**it) + " is not used by " + owner);
 }
 
 }  // namespace lu

@@ -418,7 +418,7 @@ class Parser {
     std::string mainDir_;
     std::vector<std::string> includeChain_;
     size_t totalValues_ = 0;
-    bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedTransformTimes_ = false;
+    bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedTransformTimes_ = false, warnedActiveTransform_ = false;
     bool colorSpaceSet_ = false, rgbSeen_ = false;
 };
 
@@ -763,6 +763,10 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
     } else if (d == "ActiveTransform") {
         Token t;
         if (!ts.Next(&t)) ts.Fail(dir, "unexpected end of file: \"ActiveTransform\" needs All, StartTime or EndTime");
+        if (!t.Is("All") && !warnedActiveTransform_) {
+            warnedActiveTransform_ = true;
+            diag_.Warning(loc, "ActiveTransform: motion blur is not supported; the start-time transformation is used");
+        }
         if (t.Is("All")) state_.activeStart = state_.activeEnd = true;
         else if (t.Is("StartTime")) { state_.activeStart = true; state_.activeEnd = false; }
         else if (t.Is("EndTime")) { state_.activeStart = false; state_.activeEnd = true; }
