@@ -129,6 +129,8 @@ TEST(Ply, ErrorsNameTheFileAndTheReferencingLocation) {
                              "property float y\nproperty float z\nelement face 1\n";
     EXPECT_EQ(message(head + "property list uchar float vertex_indices\nend_header\n" + std::string(25, '\0')),
               "PLY file \"m.ply\": the face property \"vertex_indices\" has a non-integer type");
+    EXPECT_EQ(message(std::string("\x1f\x8b\x08\0", 4)),
+              "PLY file \"m.ply\": the file is gzip-compressed, which is not supported; decompress it first (gunzip)");
     EXPECT_EQ(message(head + "property list uchar int vertex_indices\n"),
               "PLY file \"m.ply\": corrupt header: no \"end_header\" line before the end of the file");
     EXPECT_EQ(message("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n"),

@@ -126,6 +126,8 @@ TEST(Tokenizer, BinaryBytes) {
     EXPECT_EQ(inString.Message(), "unexpected control byte 0x01 in string (is this a binary file?)");
     SceneError utf16 = LexError(std::string("\xff\xfeW\0o\0", 6));
     EXPECT_EQ(utf16.Message(), "the file is UTF-16 encoded; scene files must be ASCII or UTF-8");
+    SceneError gz = LexError(std::string("\x1f\x8b\x08\0", 4));
+    EXPECT_EQ(gz.Message(), "the file is gzip-compressed, which is not supported; decompress it first (gunzip)");
 }
 
 TEST(Tokenizer, HugeTokensAreBounded) {

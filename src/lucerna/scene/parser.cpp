@@ -956,7 +956,8 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         ParamList params = ReadParams(ts);
         state_.areaLightName = name;
         state_.areaLightLoc = loc;
-        state_.areaLightParams = std::make_shared<ParamList>(std::move(params));
+        // The light attribute defaults in effect now apply (as pbrt-v4's AreaLightSource).
+        state_.areaLightParams = std::make_shared<ParamList>(MakeDict(std::move(params), state_.lightAttributes, loc).All());
     } else if (d == "Shape") {
         RequireWorld(ts, dir);
         ShapeEntity e;
@@ -974,7 +975,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
             light.loc = state_.areaLightLoc;
             ParamList lp = state_.areaLightParams ? *state_.areaLightParams : ParamList();
             CountValues(ValueCount(lp), loc);
-            light.params = MakeDict(std::move(lp), state_.lightAttributes, loc);
+            light.params = ParameterDictionary(std::move(lp));
             desc_.areaLights.push_back(std::move(light));
             e.areaLightIndex = int(desc_.areaLights.size()) - 1;
             if (!activeInstance_.empty()) diag_.Warning(loc, "area lights are not supported with object instancing");

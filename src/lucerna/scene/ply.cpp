@@ -120,6 +120,8 @@ class PlyReader {
 
     // ---- header ----
     void ParseHeader() {
+        if (data_.size() >= 2 && (unsigned char)data_[0] == 0x1f && (unsigned char)data_[1] == 0x8b)
+            Fail("the file is gzip-compressed, which is not supported; decompress it first (gunzip)");
         constexpr size_t maxHeader = size_t(1) << 20;
         size_t pos = 0;
         int lineNo = 0;

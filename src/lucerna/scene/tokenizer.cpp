@@ -61,6 +61,8 @@ Tokenizer::Tokenizer(std::string text, std::string filename)
     const unsigned char *c = (const unsigned char *)text_.data();
     if (text_.size() >= 2 && ((c[0] == 0xfe && c[1] == 0xff) || (c[0] == 0xff && c[1] == 0xfe)))
         Fail(1, 1, "the file is UTF-16 encoded; scene files must be ASCII or UTF-8");
+    if (text_.size() >= 2 && c[0] == 0x1f && c[1] == 0x8b)
+        Fail(1, 1, "the file is gzip-compressed, which is not supported; decompress it first (gunzip)");
     if (text_.size() >= 3 && c[0] == 0xef && c[1] == 0xbb && c[2] == 0xbf) pos_ = 3;  // UTF-8 BOM
 }
 
