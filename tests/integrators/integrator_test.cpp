@@ -46,8 +46,9 @@ TEST(Integrator, FurnaceDiffuseSphere) {
     for (int c = 0; c < 3; ++c) {
         MeanSE center = RegionMean(r.image, c, 12, 12, 20, 20);
         EXPECT_NEAR(center.mean, 0.8, 4 * center.se + 0.01) << "channel " << c;
-        MeanSE corner = RegionMean(r.image, c, 0, 0, 3, 3);
-        EXPECT_NEAR(corner.mean, 1.0, 0.01) << "channel " << c;
+        // The background is noisy only through wavelength sampling.
+        MeanSE corner = RegionMean(r.image, c, 0, 0, 4, 4);
+        EXPECT_NEAR(corner.mean, 1.0, 4 * corner.se + 0.003) << "channel " << c;
     }
 }
 
