@@ -305,7 +305,7 @@ void BuildIntegrator(BuildContext &ctx) {
         rs.regAngle = p.GetOneFloat("angle", -1);
         if (rs.regLambda < 0) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must not be negative");
     } else if (OneOf(e.name, {"volpath", "bdpt", "mlt", "sppm", "lightpath", "simplepath", "simplevolpath", "randomwalk"})) {
-        ctx.diag.Unsupported(e.loc, "Integrator " + Quoted(e.name), "rendered with \"path\", which converges to the same image");
+        ctx.diag.Unsupported(e.loc, "Integrator " + Quoted(e.name), "rendered with Lucerna's \"path\" (same maxdepth); paths through specular surfaces to point, spot or tiny lights need --integrator regpath");
         rs.integrator = "path";
         MarkAllUsed(p);  // its other parameters (radius, photons, ...) have no "path" equivalent
     } else if (OneOf(e.name, {"ambientocclusion", "aov", "function"})) {
