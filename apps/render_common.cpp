@@ -9,6 +9,11 @@
 
 #include "apps/commands.h"
 #include "lucerna/backend/cpu/cpu_render.h"
+#if defined(LUCERNA_HAVE_CUDA)
+#include "lucerna/backend/cuda/cuda_api.h"
+#include "lucerna/backend/cuda/cuda_render.h"
+#include "lucerna/backend/cuda/device_buffer.h"
+#endif
 #include "lucerna/image/image.h"
 
 namespace lu::app {
@@ -38,6 +43,30 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
         }
         opts.resX = w;
         opts.resY = h;
+    }
+    // ---- Device: cuda, cpu, or auto (the GPU when one is usable) ----
+    const std::string &device = req.device;
+    if (device != "auto" && device != "cpu" && device != "cuda") {
+        std::fprintf(stderr, "lucerna: unknown device \"%s\" (expected auto, cpu or cuda)\n", device.c_str());
+        return ExitBadInput;
+    }
+    std::string gpuName, whyNot = "this build has no CUDA backend";
+    bool haveGpu = false;
+#if defined(LUCERNA_HAVE_CUDA)
+    if (device != "cpu") haveGpu = CudaDeviceAvailable(&gpuName);
+    if (!haveGpu) whyNot = gpuName;
+#endif
+    if (device == "cuda" && !haveGpu) {
+        std::fprintf(stderr, "lucerna: --device cuda: no usable CUDA GPU (%s); use --device cpu or auto\n", whyNot.c_str());
+        return ExitBadInput;
+    }
+    static bool announced = false;   // once per process (converge prepares several renders)
+    out->deviceName = haveGpu ? "cuda " + gpuName : "cpu";
+    if (!announced) {
+        announced = true;
+        if (haveGpu) std::fprintf(stderr, "device: %s\n", gpuName.c_str());
+        else if (device == "auto") std::fprintf(stderr, "device: cpu (no CUDA GPU: %s)\n", whyNot.c_str());
+        else std::fprintf(stderr, "device: cpu\n");
     }
     try {
         out->scene = LoadScene(req.sceneFile, diag, opts);
@@ -69,12 +98,6 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
     job.regAngle = (angleDeg > 0 ? angleDeg : 2.0) * M_PI / 180;
     if (req.time > 0 && req.spp <= 0) job.spp = 1 << 24;   // time-bounded: passes until the budget
 
-    std::string device = req.device;
-    if (device == "cuda") {
-        std::fprintf(stderr, "lucerna: --device cuda: no usable CUDA GPU in this build or on this machine\n");
-        return ExitBadInput;
-    }
-    out->deviceName = "cpu";
     std::ostringstream key;
     key << std::filesystem::absolute(req.sceneFile).string() << '|' << out->scene->View().film.width << 'x'
         << out->scene->View().film.height << '|' << integrator << '|' << job.seed << '|' << job.maxDepth << '|'
@@ -85,7 +108,17 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
 }
 
 int RunBackend(Prepared &prep, FilmAccumulator &film, const PassCallback &onPass, RenderOutcome *out) {
-    out->stats = RenderCPU(*prep.scene, prep.job, film, onPass);
+#if defined(LUCERNA_HAVE_CUDA)
+    if (prep.deviceName.rfind("cuda", 0) == 0) {
+        try {
+            out->stats = RenderCUDA(*prep.scene, prep.job, film, onPass);
+        } catch (const CudaError &e) {
+            std::fprintf(stderr, "lucerna: CUDA error: %s\n", e.what());
+            return ExitInternal;
+        }
+    } else
+#endif
+        out->stats = RenderCPU(*prep.scene, prep.job, film, onPass);
     out->passes = film.passes;
     out->width = film.width;
     out->height = film.height;
