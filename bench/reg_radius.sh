@@ -14,7 +14,7 @@ printf "%-20s %-8s %10s %12s\n" scene f r0 block-rmse
 for name in bs_p caustic-glass water-caustic volumetric-caustic bs_c; do
   txt="$SHARED/refs/$name.txt"
   dir=$(sed -n 's/^scene variant: shared\/\(.*\)\/ref-.*\.pbrt.*/\1/p' "$txt")
-  file=$(ls "$SHARED/$dir"/smallvcm-$name.pbrt "$SHARED/$dir"/scene-v4-nomedium.pbrt "$SHARED/$dir"/scene-v4.pbrt 2>/dev/null | head -1)
+  file=$(ls "$SHARED/$dir"/smallvcm-$name.pbrt "$SHARED/$dir"/scene-v4-nomedium.pbrt "$SHARED/$dir"/scene-v4.pbrt 2>/dev/null | head -1 || true)
   res=$(sed -n 's/^resolution: \([0-9]*x[0-9]*\).*/\1/p' "$txt")
   diag=$("$BIN" info "$file" 2>/dev/null | sed -n 's/^bounds: (\(.*\)) - (\(.*\))$/\1 \2/p' | tr -d ',' |
          awk '{print sqrt(($4-$1)^2+($5-$2)^2+($6-$3)^2)}')

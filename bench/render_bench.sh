@@ -16,7 +16,7 @@ printf "%-22s %-9s %5s %9s %8s %12s %12s %14s %8s\n" scene res spp maxdepth seco
 for name in cornell-box water-caustic veach-mis volumetric-caustic bs_c; do
   txt="$SHARED/refs/$name.txt"
   scene=$(sed -n 's/^scene variant: shared\/\(.*\)\/ref-\(.*\)\.pbrt.*/\1/p' "$txt")
-  file=$(ls "$SHARED/$scene"/scene-v4-nomedium.pbrt "$SHARED/$scene"/scene-v4.pbrt "$SHARED/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1)
+  file=$(ls "$SHARED/$scene"/scene-v4-nomedium.pbrt "$SHARED/$scene"/scene-v4.pbrt "$SHARED/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1 || true)
   res=$(sed -n 's/^resolution: \([0-9]*x[0-9]*\).*/\1/p' "$txt")
   maxdepth=$(sed -n 's/.*"integer maxdepth" \[ \([0-9]*\) \].*/\1/p' "$txt")
   pbrtspp=$(sed -n 's/.*spp: \([0-9]*\).*/\1/p' "$txt")
