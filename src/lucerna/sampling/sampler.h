@@ -151,24 +151,30 @@ struct Sampler {
     // ---- Internals ----
 
     // pbrt-v4's ZSobolSampler::GetSampleIndex: Morton index with every base-4 digit shuffled by
-    // one of the 24 permutations, chosen by a hash of the higher digits and the dimension.
+    // one of the 24 permutations, chosen by a hash of the higher digits and the dimension. The
+    // digits are visited from high to low with constant shifts only; the hashes do not depend
+    // on each other, so they overlap in the pipeline.
     LU_HD uint64_t ZSobolSampleIndex() const {
-        uint64_t index = 0;
-        bool pow2Samples = log2SamplesPerPixel & 1;
-        int lastDigit = pow2Samples ? 1 : 0;
+        int pow2Samples = log2SamplesPerPixel & 1;
         // pbrt-v4 computes 0x55555555 * dimension in int and sign-extends it to 64 bits.
         uint64_t dimMix = uint64_t(int64_t(int32_t(0x55555555u * uint32_t(dimension))));
-        for (int i = nBase4Digits - 1; i >= lastDigit; --i) {
-            int digitShift = 2 * i - (pow2Samples ? 1 : 0);
-            int digit = int((mortonIndex >> digitShift) & 3);
-            uint64_t higherDigits = mortonIndex >> (digitShift + 2);
-            int p = int((MixBits(higherDigits ^ dimMix) >> 24) % 24);
-            index |= uint64_t(PermuteBase4Digit(p, digit)) << digitShift;
+        // Digit i (pbrt-v4's numbering) sits at bit 2 i - pow2Samples of mortonIndex, for i from
+        // pow2Samples to nBase4Digits - 1: the nDigits base-4 digits of `rest`, all of its bits.
+        uint64_t rest = mortonIndex >> pow2Samples;
+        int nDigits = nBase4Digits - pow2Samples;
+        uint64_t index = 0;
+        if (nDigits > 0) {
+            uint64_t higher = nDigits < 32 ? rest >> (2 * nDigits) : 0;   // digits above the top one
+            uint64_t aligned = rest << (64 - 2 * nDigits);                // top digit in bits 62..63
+            for (int k = 0; k < nDigits; ++k) {
+                int digit = int(aligned >> 62);
+                aligned <<= 2;
+                int p = int((MixBits(higher ^ dimMix) >> 24) % 24);
+                index = (index << 2) | uint64_t(PermuteBase4Digit(p, digit));
+                higher = (higher << 2) | uint64_t(digit);
+            }
         }
-        if (pow2Samples) {
-            uint64_t digit = mortonIndex & 1;
-            index |= digit ^ (MixBits((mortonIndex >> 1) ^ dimMix) & 1);
-        }
+        if (pow2Samples) index = (index << 1) | ((mortonIndex & 1) ^ (MixBits((mortonIndex >> 1) ^ dimMix) & 1));
         return index;
     }
 

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Lucerna: repeatable instruction counts of the render loop (callgrind, 1 thread), per camera
+# sample, for judging CPU optimizations on a shared, noisy machine.
+# Usage: bench/instr_count.sh [BIN] [RES] [SPP]   (defaults: build-perf/lucerna 32x32 4)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SHARED=${LUCERNA_SHARED_DIR:-../shared}
+BIN=${1:-build-perf/lucerna}
+RES=${2:-32x32}
+SPP=${3:-4}
+out=$(mktemp -d)
+printf "%-22s %9s %5s %14s %12s\n" scene res spp instructions instr/sample
+for scene in bitterli-cornell-box bitterli-veach-mis; do
+  valgrind --tool=callgrind --callgrind-out-file="$out/cg.out" --toggle-collect='lu::RenderCPU*lambda*' \
+    "$BIN" render "$SHARED/scenes/$scene/scene-v4.pbrt" --res "$RES" --spp "$SPP" --threads 1 -q \
+    -o "$out/img.exr" >/dev/null 2>"$out/log"
+  ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$out/log")
+  w=${RES%x*}; h=${RES#*x}
+  printf "%-22s %9s %5s %14s %12.0f\n" "$scene" "$RES" "$SPP" "$ir" "$(echo "$ir / ($w * $h * $SPP)" | bc -l)"
+done
+rm -rf "$out"
