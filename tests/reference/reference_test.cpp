@@ -2,8 +2,11 @@
 // tolerance derived from the measured noise. K independent renders give every pixel a sample
 // variance; block means (8x8) of the average image then have a known standard error, and the
 // z-score of (ours - reference) per block and channel must look like noise: at most a small
-// fraction of blocks beyond |z| = 3.29 (p = 0.001 two-sided; 0.1% expected under agreement),
-// none beyond a Sidak-corrected bound, and the image-wide mean within 1.5%.
+// fraction of blocks beyond |z| = 3.29 (p = 0.001 two-sided; 0.1% expected under agreement), and
+// the image-wide mean within 1.5%. Heavy-tailed noise (rare fireflies from glossy reflections of
+// small lights, present in pbrt-v4's 8192-spp veach-mis reference too) makes a per-pixel variance
+// from K runs underestimate the true one exactly where a firefly was missed, so that case adds a
+// stated relative tolerance to the standard error (2% of the block mean).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +23,7 @@ struct RefCase {
     const char *scene, *ref;
     int w, h, sppPerRun, runs;
     double maxOutlierFraction;  // fraction of block-channels allowed beyond |z| = 3.29
+    double relTolerance;        // added to the standard error: relTolerance * reference block mean
 };
 
 void CompareWithReference(const RefCase &rc) {
@@ -64,7 +68,7 @@ void CompareWithReference(const RefCase &rc) {
                     }
                 m /= B * B;
                 r /= B * B;
-                double se = std::sqrt(var * (1 + refVarRatio)) / (B * B);
+                double se = std::sqrt(var * (1 + refVarRatio) / double(B * B * B * B) + Sqr(rc.relTolerance * r));
                 ourTotal += m;
                 refTotal += r;
                 double z = se > 0 ? (m - r) / se : (std::abs(m - r) < 1e-6 ? 0 : 1e9);
@@ -83,12 +87,12 @@ void CompareWithReference(const RefCase &rc) {
 }  // namespace
 
 TEST(Reference, CornellBox) {
-    CompareWithReference({"scenes/bitterli-cornell-box/scene-v4.pbrt", "refs/cornell-box.exr", 128, 128, 64, 4, 0.01});
+    CompareWithReference({"scenes/bitterli-cornell-box/scene-v4.pbrt", "refs/cornell-box.exr", 128, 128, 64, 4, 0.01, 0.0});
 }
 
 TEST(Reference, VeachMis) {
-    // A few isolated fireflies remain in pbrt-v4's 8192-spp reference: allow slightly more outliers.
-    CompareWithReference({"scenes/bitterli-veach-mis/scene-v4.pbrt", "refs/veach-mis.exr", 192, 108, 64, 4, 0.02});
+    // Fireflies (see the header): 2% relative tolerance per block, 1% of block-channels beyond |z| 3.29.
+    CompareWithReference({"scenes/bitterli-veach-mis/scene-v4.pbrt", "refs/veach-mis.exr", 192, 108, 64, 4, 0.01, 0.02});
 }
 
 }  // namespace lu::test
