@@ -17,13 +17,23 @@ struct SampledSpectrum {
     LU_HD Float &operator[](int i) { return v[i]; }
 #define LU_SS_OP(op)                                                                        \
     LU_HD SampledSpectrum operator op(const SampledSpectrum &b) const {                     \
-        SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = v[i] op b.v[i]; return r; } \
+        SampledSpectrum r;                                                                  \
+        for (int i = 0; i < NSpectrumSamples; ++i) { r.v[i] = v[i] op b.v[i]; }            \
+        return r;                                                                           \
+    }                                                                                       \
     LU_HD SampledSpectrum &operator op##=(const SampledSpectrum &b) {                        \
-        for (int i = 0; i < NSpectrumSamples; ++i) v[i] op## = b.v[i]; return *this; }        \
+        for (int i = 0; i < NSpectrumSamples; ++i) { v[i] op## = b.v[i]; }                  \
+        return *this;                                                                       \
+    }                                                                                       \
     LU_HD SampledSpectrum operator op(Float s) const {                                       \
-        SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = v[i] op s; return r; } \
+        SampledSpectrum r;                                                                  \
+        for (int i = 0; i < NSpectrumSamples; ++i) { r.v[i] = v[i] op s; }                 \
+        return r;                                                                           \
+    }                                                                                       \
     LU_HD SampledSpectrum &operator op##=(Float s) {                                          \
-        for (int i = 0; i < NSpectrumSamples; ++i) v[i] op## = s; return *this; }
+        for (int i = 0; i < NSpectrumSamples; ++i) { v[i] op## = s; }                       \
+        return *this;                                                                       \
+    }
     LU_SS_OP(+) LU_SS_OP(-) LU_SS_OP(*) LU_SS_OP(/)
 #undef LU_SS_OP
     LU_HD bool IsBlack() const { for (int i = 0; i < NSpectrumSamples; ++i) if (v[i] != 0) return false; return true; }
