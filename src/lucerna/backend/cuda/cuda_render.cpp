@@ -112,15 +112,21 @@ class PassPipeline {
 }  // namespace
 
 RenderStats RenderCUDA(const HostScene &hs, const RenderJob &job, FilmAccumulator &film, const PassCallback &onPass) {
+    auto b0 = std::chrono::steady_clock::now();
+    SceneView view = hs.View();
+    GpuBVH bvh = BuildBVH(view);
+    DeviceScene dev(view, bvh);
+    double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - b0).count();
+    RenderStats stats = RenderCUDA(dev, job, film, onPass);
+    stats.buildSeconds = buildSeconds;
+    return stats;
+}
+
+RenderStats RenderCUDA(const DeviceScene &dev, const RenderJob &job, FilmAccumulator &film, const PassCallback &onPass) {
     RenderStats stats;
-    SceneView scene = hs.View();
+    const SceneView &scene = dev.View();
     int width = scene.film.width, height = scene.film.height;
     if (film.width != width || film.height != height) film.Resize(width, height);
-
-    auto b0 = std::chrono::steady_clock::now();
-    GpuBVH bvh = BuildBVH(scene);
-    DeviceScene dev(scene, bvh);
-    stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - b0).count();
 
     PathKernelArgs args;
     args.bvh = dev.Bvh();

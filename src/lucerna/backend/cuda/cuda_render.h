@@ -16,4 +16,9 @@ namespace lu {
 // the BVH build and the upload. Throws CudaError (backend/cuda/device_buffer.h) on device failures.
 RenderStats RenderCUDA(const HostScene &scene, const RenderJob &job, FilmAccumulator &film, const PassCallback &onPass = {});
 
+class DeviceScene;
+// The same over a scene already on the device (DeviceScene of HostScene::View() and its BuildBVH),
+// for callers that render one scene many times (tests, benchmarks); stats.buildSeconds is 0.
+RenderStats RenderCUDA(const DeviceScene &scene, const RenderJob &job, FilmAccumulator &film, const PassCallback &onPass = {});
+
 }  // namespace lu

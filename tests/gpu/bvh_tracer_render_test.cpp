@@ -1,0 +1,167 @@
+// The integrator over the shared BVH traversal (BVHTracer, what the CUDA megakernel runs) on the
+// host against the CPU backend (Embree): with the same seed the images agree pixel by pixel
+// except where a ray hits differently; with different seeds the block means agree
+// statistically. Runs without a GPU; it also exercises the statistics of the CPU/GPU tests.
+#include <gtest/gtest.h>
+
+#include <tbb/parallel_for.h>
+
+#include "gpu/gpu_test_util.h"
+#include "gpu/render_compare.h"
+#include "lucerna/backend/cpu/cpu_render.h"
+#include "lucerna/geometry/bvh_traverse.h"
+#include "lucerna/integrators/path.h"
+
+namespace lu {
+namespace {
+
+// RenderCPU's pass loop with BVHTracer instead of Embree (the film write of cpu_render.cpp).
+FilmAccumulator RenderWithBVHTracer(const HostScene &hs, const RenderJob &job, RenderStats *stats) {
+    SceneView scene = hs.View();
+    int width = scene.film.width, height = scene.film.height;
+    GpuBVH bvh = BuildBVH(scene);
+    BVHTracer tracer{bvh.View(), &scene};
+    Sampler base = MakeSampler(job.samplerName, job.samplerSpp, int(job.seed), width, height);
+    FilmAccumulator film;
+    film.Resize(width, height);
+    PassBuffer pass;
+    pass.Resize(width, height);
+    std::vector<PathStats> rowStats(height);
+    std::vector<uint64_t> rowRejected(height);
+    for (uint32_t p = 0; p < uint32_t(job.spp); ++p) {
+        PathSettings ps;
+        ps.maxDepth = job.maxDepth;
+        ps.strategy = LightStrategy(job.lightStrategy);
+        ps.reg = RegularizationForPass(job.regularize, Float(job.regRadius), Float(job.regAngle), Float(job.regLambda), p);
+        tbb::parallel_for(0, height, [&](int y) {
+            Sampler sampler = base;
+            for (int x = 0; x < width; ++x) {
+                CameraSampleResult cs = RenderSample(x, y, p, sampler, scene, tracer, ps, rowStats[y]);
+                Float xyz[3];
+                SensorXYZ(cs.L, cs.lambda, scene.spectra, scene.film.imagingRatio, xyz);
+                float *px = &pass.xyzw[(size_t(y) * width + x) * 4];
+                bool ok = std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]) &&
+                          std::isfinite(cs.filterWeight) && cs.L.MinValue() >= 0;
+                if (!ok) {
+                    ++rowRejected[y];
+                    px[0] = px[1] = px[2] = px[3] = 0;
+                    continue;
+                }
+                Float m = Max(xyz[0], Max(xyz[1], xyz[2]));
+                if (m > scene.film.maxComponentValue)
+                    for (float &c : xyz) c *= scene.film.maxComponentValue / m;
+                for (int c = 0; c < 3; ++c) px[c] = cs.filterWeight * xyz[c];
+                px[3] = cs.filterWeight;
+            }
+        });
+        film.Commit(pass);
+    }
+    *stats = RenderStats();
+    for (int y = 0; y < height; ++y) {
+        stats->rays += rowStats[y].rays;
+        stats->shadowRays += rowStats[y].shadowRays;
+        stats->rejected += rowRejected[y];
+    }
+    stats->samples = uint64_t(width) * height * job.spp;
+    return film;
+}
+
+std::unique_ptr<HostScene> LoadAt(const std::string &rel, int res) {
+    Diagnostics diag;
+    diag.quiet = true;
+    BuildOptions opts;
+    opts.resX = opts.resY = res;
+    return LoadScene(test::SharedPath("scenes/" + rel), diag, opts);
+}
+
+struct Case {
+    const char *scene;
+    const char *integrator;
+    double minEqualPixels;   // same seed: fraction of pixels that must agree to 1e-3
+};
+// Triangles only (diffuse); spheres with mirror and glass; conductors and sphere lights. Paths
+// bouncing between a convex mirror and a glass sphere magnify last-bit differences of the hit
+// points at every bounce, so in bs_c a few percent of the pixels take another path at 2 spp.
+const Case kCases[] = {{"bitterli-cornell-box/scene-v4.pbrt", "path", 0.995},
+                       {"smallvcm-cornell/smallvcm-bs_c.pbrt", "regpath", 0.85},
+                       {"bitterli-veach-mis/scene-v4.pbrt", "path", 0.99}};
+constexpr int kRes = 48, kSpp = 8, kSeeds = 4;
+
+// Same seed, same sample values: a pixel differs only where some ray of its paths hit
+// differently (last-bit differences of the two triangle tests).
+TEST(BVHTracerRender, SameSeedMatchesEmbreePerPixel) {
+    for (const Case &c : kCases) {
+        SCOPED_TRACE(c.scene);
+        auto scene = LoadAt(c.scene, kRes);
+        RenderJob job = test::JobForScene(*scene, c.integrator, 2, 7);
+        FilmAccumulator embree;
+        RenderStats se = RenderCPU(*scene, job, embree);
+        RenderStats sb;
+        FilmAccumulator ours = RenderWithBVHTracer(*scene, job, &sb);
+        size_t close = 0, n = size_t(kRes) * kRes;
+        for (size_t i = 0; i < n; ++i) {
+            bool same = true;
+            for (int k = 0; k < 4; ++k) {
+                double a = embree.xyzw[4 * i + k], b = ours.xyzw[4 * i + k];
+                same &= std::abs(a - b) <= 1e-3 * (std::abs(a) + std::abs(b)) + 1e-6;
+            }
+            close += same;
+        }
+        double frac = double(close) / n;
+        std::printf("[ same seed ] %-40s %-7s %.2f%% of pixels equal to 1e-3; rays %llu vs %llu\n", c.scene,
+                    c.integrator, 100 * frac, (unsigned long long)se.rays, (unsigned long long)sb.rays);
+        EXPECT_GE(frac, c.minEqualPixels);
+        // The same paths: ray counts within a fraction of a percent.
+        EXPECT_NEAR(double(sb.rays), double(se.rays), 0.01 * se.rays);
+        EXPECT_EQ(sb.rejected, se.rejected);
+    }
+}
+
+// Independent seeds: block means agree (z-test, Sidak-corrected over all blocks and channels).
+TEST(BVHTracerRender, BlockMeansMatchEmbree) {
+    const int block = 12;
+    int tests = int(std::size(kCases)) * (kRes / block) * (kRes / block) * 3;
+    double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
+    for (const Case &c : kCases) {
+        SCOPED_TRACE(c.scene);
+        auto scene = LoadAt(c.scene, kRes);
+        std::vector<Image> embree, ours;
+        for (int s = 0; s < kSeeds; ++s) {
+            RenderJob job = test::JobForScene(*scene, c.integrator, kSpp, 100 + s);
+            FilmAccumulator fa;
+            RenderCPU(*scene, job, fa);
+            embree.push_back(fa.Resolve(scene->View().film));
+            job.seed = 200 + s;
+            RenderStats st;
+            ours.push_back(RenderWithBVHTracer(*scene, job, &st).Resolve(scene->View().film));
+            EXPECT_TRUE(test::AllFinite(ours.back()));
+        }
+        test::BlockComparison r = test::CompareBlockMeans(embree, ours, block, z);
+        std::printf("[ blocks    ] %-40s %-7s %s (threshold %.2f)\n", c.scene, c.integrator, r.Summary().c_str(), z);
+        EXPECT_EQ(r.failures, 0) << r.Summary();
+    }
+}
+
+// The comparison can fail: a 10% brighter image is caught at the same sample counts.
+TEST(BVHTracerRender, BlockComparisonDetectsABias) {
+    auto scene = LoadAt("bitterli-cornell-box/scene-v4.pbrt", kRes);
+    std::vector<Image> a, b;
+    for (int s = 0; s < kSeeds; ++s) {
+        RenderJob job = test::JobForScene(*scene, "path", kSpp, 300 + s);
+        FilmAccumulator fa;
+        RenderCPU(*scene, job, fa);
+        a.push_back(fa.Resolve(scene->View().film));
+        job.seed = 400 + s;
+        FilmAccumulator fb;
+        RenderCPU(*scene, job, fb);
+        b.push_back(fb.Resolve(scene->View().film));
+        for (float &v : b.back().pixels) v *= 1.1f;
+    }
+    double z = test::TwoSidedZ(test::SidakP(1e-3, int(std::size(kCases)) * 16 * 3));
+    test::BlockComparison r = test::CompareBlockMeans(a, b, 12, z);
+    std::printf("[ blocks    ] cornell box, 10%% bias injected: %s\n", r.Summary().c_str());
+    EXPECT_GT(r.failures, r.tests / 4) << r.Summary();
+}
+
+}  // namespace
+}  // namespace lu
