@@ -11,7 +11,7 @@ SPP=${3:-4}
 out=$(mktemp -d)
 printf "%-22s %9s %5s %14s %12s\n" scene res spp instructions instr/sample
 for scene in bitterli-cornell-box bitterli-veach-mis; do
-  valgrind --tool=callgrind --callgrind-out-file="$out/cg.out" --toggle-collect='lu::RenderCPU*lambda*' \
+  valgrind --tool=callgrind --callgrind-out-file="$out/cg.out" --toggle-collect='tbb::detail::r1::execute_and_wait*' \
     "$BIN" render "$SHARED/scenes/$scene/scene-v4.pbrt" --res "$RES" --spp "$SPP" --threads 1 -q \
     -o "$out/img.exr" >/dev/null 2>"$out/log"
   ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$out/log")

@@ -57,12 +57,12 @@ LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
 
 // Uniform sampling of the solid angle subtended by triangle v from p (Arvo 1995). Returns the
 // barycentrics of the sampled point; *pdf = 1 / solid angle, or 0 for degenerate triangles.
-LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u, Float b[3], Float *pdf) {
+// The same with the unit directions dir[i] = Normalize(v[i] - p) already computed (v[i] != p).
+LU_INLINE void SampleSphericalTriangleDirs(const Vec3f v[3], const Vec3f dir[3], const Vec3f &p, Vec2f u, Float b[3],
+                                           Float *pdf) {
     *pdf = 0;
     b[0] = b[1] = b[2] = Float(1) / 3;
-    Vec3f a = v[0] - p, bb = v[1] - p, c = v[2] - p;
-    if (LengthSquared(a) == 0 || LengthSquared(bb) == 0 || LengthSquared(c) == 0) return;
-    a = Normalize(a); bb = Normalize(bb); c = Normalize(c);
+    const Vec3f &a = dir[0], &bb = dir[1], &c = dir[2];
     Vec3f nab = Cross(a, bb), nbc = Cross(bb, c), nca = Cross(c, a);
     if (LengthSquared(nab) == 0 || LengthSquared(nbc) == 0 || LengthSquared(nca) == 0) return;
     nab = Normalize(nab); nbc = Normalize(nbc); nca = Normalize(nca);
@@ -104,9 +104,20 @@ LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u
     b[0] = 1 - b1 - b2; b[1] = b1; b[2] = b2;
 }
 
+LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u, Float b[3], Float *pdf) {
+    Vec3f dir[3] = {v[0] - p, v[1] - p, v[2] - p};
+    if (LengthSquared(dir[0]) == 0 || LengthSquared(dir[1]) == 0 || LengthSquared(dir[2]) == 0) {
+        *pdf = 0;
+        b[0] = b[1] = b[2] = Float(1) / 3;
+        return;
+    }
+    for (int i = 0; i < 3; ++i) dir[i] = Normalize(dir[i]);
+    SampleSphericalTriangleDirs(v, dir, p, u, b, pdf);
+}
+
 // The sample u that SampleSphericalTriangle maps to direction w (unit) from p.
-LU_INLINE Vec2f InvertSphericalTriangleSample(const Vec3f v[3], const Vec3f &p, const Vec3f &w) {
-    Vec3f a = Normalize(v[0] - p), b = Normalize(v[1] - p), c = Normalize(v[2] - p);
+LU_INLINE Vec2f InvertSphericalTriangleSampleDirs(const Vec3f dir[3], const Vec3f &w) {
+    const Vec3f &a = dir[0], &b = dir[1], &c = dir[2];
     Vec3f nab = Cross(a, b), nbc = Cross(b, c), nca = Cross(c, a);
     if (LengthSquared(nab) == 0 || LengthSquared(nbc) == 0 || LengthSquared(nca) == 0) return {0.5f, 0.5f};
     nab = Normalize(nab); nbc = Normalize(nbc); nca = Normalize(nca);
@@ -128,6 +139,11 @@ LU_INLINE Vec2f InvertSphericalTriangleSample(const Vec3f v[3], const Vec3f &p, 
     }
     Float u1 = (1 - Dot(w, b)) / (1 - Dot(cp, b));
     return {Clamp(u0, Float(0), Float(1)), Clamp(u1, Float(0), Float(1))};
+}
+
+LU_INLINE Vec2f InvertSphericalTriangleSample(const Vec3f v[3], const Vec3f &p, const Vec3f &w) {
+    Vec3f dir[3] = {Normalize(v[0] - p), Normalize(v[1] - p), Normalize(v[2] - p)};
+    return InvertSphericalTriangleSampleDirs(dir, w);
 }
 
 // ---- Shapes ----
@@ -200,11 +216,19 @@ LU_INLINE void TriangleNormalUV(const SceneView &s, const TriangleMesh &m, const
 
 // Bilinear corner weights approximating |cos| at the reference point over the spherical
 // triangle (pbrt-v4): (0,0),(1,0) -> vertex 1, (0,1) -> vertex 0, (1,1) -> vertex 2.
+// dir[i]: the unit directions from ctx.p to the vertices.
+LU_INLINE void TriangleCosWeights(const Vec3f dir[3], const LightSampleContext &ctx, Float w[4]) {
+    w[0] = w[1] = Max(Float(0.01), AbsDot(ctx.ns, dir[1]));
+    w[2] = Max(Float(0.01), AbsDot(ctx.ns, dir[0]));
+    w[3] = Max(Float(0.01), AbsDot(ctx.ns, dir[2]));
+}
 LU_INLINE void TriangleCosWeights(const TriangleData &t, const LightSampleContext &ctx, Float w[4]) {
-    Vec3f wi0 = Normalize(t.p[0] - ctx.p), wi1 = Normalize(t.p[1] - ctx.p), wi2 = Normalize(t.p[2] - ctx.p);
-    w[0] = w[1] = Max(Float(0.01), AbsDot(ctx.ns, wi1));
-    w[2] = Max(Float(0.01), AbsDot(ctx.ns, wi0));
-    w[3] = Max(Float(0.01), AbsDot(ctx.ns, wi2));
+    Vec3f dir[3] = {Normalize(t.p[0] - ctx.p), Normalize(t.p[1] - ctx.p), Normalize(t.p[2] - ctx.p)};
+    TriangleCosWeights(dir, ctx, w);
+}
+
+LU_INLINE void TriangleDirections(const TriangleData &t, const Vec3f &p, Vec3f dir[3]) {
+    for (int i = 0; i < 3; ++i) dir[i] = Normalize(t.p[i] - p);
 }
 
 LU_INLINE Float TriangleSolidAngle(const TriangleData &t, const Vec3f &p) {
@@ -223,7 +247,9 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
                               Vec2f u, ShapeSample *ss) {
     const TriangleMesh &m = s.triangleMeshes[shape.index];
     TriangleData t = GetTriangle(s, m, prim);
-    Float sa = TriangleSolidAngle(t, ctx.p);
+    Vec3f dir[3];   // shared by the solid angle, the cos weights and the spherical sampling
+    TriangleDirections(t, ctx.p, dir);
+    Float sa = SphericalTriangleArea(dir[0], dir[1], dir[2]);
     Float b[3];
     Float pdf;
     bool spherical = sa >= MinSphericalSampleArea && sa <= MaxSphericalSampleArea;
@@ -233,12 +259,13 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
         pdf = 1;
         if (ctx.ns != Vec3f(0, 0, 0)) {
             Float w[4];
-            TriangleCosWeights(t, ctx, w);
+            TriangleCosWeights(dir, ctx, w);
             u = SampleBilinear(u, w);
             pdf *= BilinearPDF(u, w);
         }
         Float triPDF;
-        SampleSphericalTriangle(t.p, ctx.p, u, b, &triPDF);
+        // A finite solid angle means no vertex coincides with ctx.p (else dir would be NaN).
+        SampleSphericalTriangleDirs(t.p, dir, ctx.p, u, b, &triPDF);
         if (triPDF == 0) return false;
         pdf *= triPDF;
     }
@@ -258,7 +285,9 @@ LU_INLINE Float TrianglePDF(const SceneView &s, const Shape &shape, uint32_t pri
                             const Vec3f &wi, const Vec3f &pLight, const Vec3f &nLight) {
     const TriangleMesh &m = s.triangleMeshes[shape.index];
     TriangleData t = GetTriangle(s, m, prim);
-    Float sa = TriangleSolidAngle(t, ctx.p);
+    Vec3f dir[3];
+    TriangleDirections(t, ctx.p, dir);
+    Float sa = SphericalTriangleArea(dir[0], dir[1], dir[2]);
     if (sa < MinSphericalSampleArea || sa > MaxSphericalSampleArea) {
         Float area = 0.5f * Length(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
         return AreaToSolidAnglePDF(1 / area, ctx.p, pLight, nLight, wi);
@@ -266,8 +295,8 @@ LU_INLINE Float TrianglePDF(const SceneView &s, const Shape &shape, uint32_t pri
     Float pdf = 1 / sa;
     if (ctx.ns != Vec3f(0, 0, 0)) {
         Float w[4];
-        TriangleCosWeights(t, ctx, w);
-        pdf *= BilinearPDF(InvertSphericalTriangleSample(t.p, ctx.p, wi), w);
+        TriangleCosWeights(dir, ctx, w);
+        pdf *= BilinearPDF(InvertSphericalTriangleSampleDirs(dir, wi), w);
     }
     return pdf;
 }

@@ -5,12 +5,22 @@
 #pragma once
 
 #include "lucerna/sampling/hash.h"
+#include "lucerna/util/vecmath.h"
+
+// Forced inlining for the per-dimension sampler paths (called ~20 times per camera sample).
+#if defined(__CUDACC__)
+#define LU_SAMPLER_INLINE __forceinline__
+#elif defined(__GNUC__)
+#define LU_SAMPLER_INLINE inline __attribute__((always_inline))
+#else
+#define LU_SAMPLER_INLINE inline
+#endif
 
 namespace lu {
 
 // ---- Bit utilities ----
 
-LU_INLINE uint32_t ReverseBits32(uint32_t n) {
+LU_HD LU_SAMPLER_INLINE uint32_t ReverseBits32(uint32_t n) {
 #if defined(__CUDA_ARCH__)
     return __brev(n);
 #else
@@ -59,7 +69,7 @@ LU_INLINE uint64_t EncodeMorton2(uint32_t x, uint32_t y) { return (LeftShift2(y)
 // Dimension 1 in bit-reversed form: bit j of the result is the XOR of the index bits k that
 // contain j (C(k, j) odd, Lucas), i.e. a superset transform over GF(2) in 5 steps. Columns repeat
 // after 32, so the high word of the index folds onto the low one.
-LU_INLINE uint32_t SobolPascalReversed(uint64_t a) {
+LU_HD LU_SAMPLER_INLINE uint32_t SobolPascalReversed(uint64_t a) {
     uint32_t z = uint32_t(a) ^ uint32_t(a >> 32);
     z ^= (z >> 1) & 0x55555555u;
     z ^= (z >> 2) & 0x33333333u;
@@ -125,7 +135,7 @@ struct OwenScrambler {
 // v / 2^32 as a float rounded toward zero: bits below the 24 leading significant bits are
 // cleared first, so the conversion is exact. (pbrt-v4 rounds to nearest, which can carry a
 // scrambled point across a stratum boundary; the two differ by at most one float ulp.)
-LU_INLINE Float UInt32ToUnitFloat(uint32_t v) {
+LU_HD LU_SAMPLER_INLINE Float UInt32ToUnitFloat(uint32_t v) {
 #if defined(__GNUC__) && !defined(__CUDA_ARCH__)
     // Keep the 24 bits below the leading one: shift = max(0, 8 - clz(v)).
     int shift = 8 - __builtin_clz(v | 1);
@@ -149,7 +159,7 @@ LU_INLINE Float SobolSample(uint64_t a, int dimension, R randomizer) {
 
 // The same with the randomizer chosen at run time; hash seeds the randomizer. The common
 // fast-Owen case skips the bit reversals that cancel (the generator's and the scrambler's).
-LU_INLINE Float SobolSample(uint64_t a, int dimension, RandomizeStrategy r, uint32_t hash) {
+LU_HD LU_SAMPLER_INLINE Float SobolSample(uint64_t a, int dimension, RandomizeStrategy r, uint32_t hash) {
     switch (r) {
     case RandomizeStrategy::None: return SobolSample(a, dimension, NoRandomizer());
     case RandomizeStrategy::PermuteDigits: return SobolSample(a, dimension, BinaryPermuteScrambler(hash));
@@ -161,13 +171,19 @@ LU_INLINE Float SobolSample(uint64_t a, int dimension, RandomizeStrategy r, uint
     }
 }
 
+// Dimensions 0 and 1 of index a, fast-Owen scrambled with seeds hash0 and hash1.
+LU_HD LU_SAMPLER_INLINE Vec2f SobolSample2DFastOwen(uint64_t a, uint32_t hash0, uint32_t hash1) {
+    return {UInt32ToUnitFloat(ReverseBits32(FastOwenScrambler(hash0).Reversed(uint32_t(a)))),
+            UInt32ToUnitFloat(ReverseBits32(FastOwenScrambler(hash1).Reversed(SobolPascalReversed(a))))};
+}
+
 // ---- The 24 permutations of a base-4 digit (ZSobol's per-digit shuffles) ----
 
 // Element `digit` of permutation p (0 <= p < 24) in pbrt-v4's ZSobolSampler table order. The
 // table is packed 2 bits per element, one byte per permutation, 8 permutations per word:
 // {0123, 0132, 0213, 0231, 0321, 0312, 1023, 1032, 1203, 1230, 1320, 1302,
 //  2103, 2130, 2013, 2031, 2301, 2310, 3120, 3102, 3210, 3201, 3021, 3012}.
-LU_INLINE int PermuteBase4Digit(int p, int digit) {
+LU_HD LU_SAMPLER_INLINE int PermuteBase4Digit(int p, int digit) {
 #if defined(__CUDA_ARCH__)
     uint64_t word = p < 8 ? 0xb1e19c6c78d8b4e4ull : (p < 16 ? 0x72d236c68d2d39c9ull : 0x93634b1b87271e4eull);
     uint32_t perm = uint32_t(word >> (8 * (p & 7))) & 0xffu;

@@ -84,15 +84,32 @@ struct Sampler {
     }
 
     // One value in [0, 1).
-    LU_HD Float Get1D() {
-        switch (kind) {
-        case SamplerKind::Independent: ++dimension; return rng.Uniform<float>();
-        case SamplerKind::ZSobol: {
+    LU_HD LU_SAMPLER_INLINE Float Get1D() {
+        if (kind == SamplerKind::ZSobol) {   // the default: kept small so that it inlines
             uint64_t index = ZSobolSampleIndex();
             ++dimension;
             uint32_t hash = uint32_t(MixBits(uint64_t(int64_t(dimension ^ passSeed))));
             return SobolSample(index, 0, Randomizer(), hash);
         }
+        return Get1DOther();
+    }
+
+    // Two values in [0, 1)^2 (a 2D-stratified pair for the Sobol' kinds).
+    LU_HD LU_SAMPLER_INLINE Vec2f Get2D() {
+        if (kind == SamplerKind::ZSobol) {
+            uint64_t index = ZSobolSampleIndex();
+            dimension += 2;
+            uint64_t bits = MixBits(uint64_t(int64_t(dimension ^ passSeed)));
+            RandomizeStrategy r = Randomizer();
+            if (r == RandomizeStrategy::FastOwen) return SobolSample2DFastOwen(index, uint32_t(bits), uint32_t(bits >> 32));
+            return {SobolSample(index, 0, r, uint32_t(bits)), SobolSample(index, 1, r, uint32_t(bits >> 32))};
+        }
+        return Get2DOther();
+    }
+
+    LU_HD Float Get1DOther() {
+        switch (kind) {
+        case SamplerKind::Independent: ++dimension; return rng.Uniform<float>();
         case SamplerKind::PaddedSobol: {
             uint64_t hash = PixelDimensionHash();
             int index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
@@ -109,21 +126,13 @@ struct Sampler {
         }
     }
 
-    // Two values in [0, 1)^2 (a 2D-stratified pair for the Sobol' kinds).
-    LU_HD Vec2f Get2D() {
+    LU_HD Vec2f Get2DOther() {
         switch (kind) {
         case SamplerKind::Independent: {
             dimension += 2;
             Float u0 = rng.Uniform<float>();
             Float u1 = rng.Uniform<float>();
             return {u0, u1};
-        }
-        case SamplerKind::ZSobol: {
-            uint64_t index = ZSobolSampleIndex();
-            dimension += 2;
-            uint64_t bits = MixBits(uint64_t(int64_t(dimension ^ passSeed)));
-            RandomizeStrategy r = Randomizer();
-            return {SobolSample(index, 0, r, uint32_t(bits)), SobolSample(index, 1, r, uint32_t(bits >> 32))};
         }
         case SamplerKind::PaddedSobol: {
             uint64_t hash = PixelDimensionHash();
@@ -154,7 +163,7 @@ struct Sampler {
     // one of the 24 permutations, chosen by a hash of the higher digits and the dimension. The
     // digits are visited from high to low with constant shifts only; the hashes do not depend
     // on each other, so they overlap in the pipeline.
-    LU_HD uint64_t ZSobolSampleIndex() const {
+    LU_HD LU_SAMPLER_INLINE uint64_t ZSobolSampleIndex() const {
         int pow2Samples = log2SamplesPerPixel & 1;
         // pbrt-v4 computes 0x55555555 * dimension in int and sign-extends it to 64 bits.
         uint64_t dimMix = uint64_t(int64_t(int32_t(0x55555555u * uint32_t(dimension))));

@@ -9,12 +9,18 @@
 
 namespace lu {
 
+// Index of the nearest integer wavelength, lround(lambda) - 360, in a 471-entry table; -1 outside
+// [360, 830]. For lambda >= 1, trunc(lambda + 0.5f) is exact and equals lround.
+LU_INLINE int DenseNearestOffset(Float lambda) {
+    if (!(lambda >= LambdaMin - 0.5f && lambda < LambdaMax + 0.5f)) return -1;
+    return int(lambda + 0.5f) - int(LambdaMin);
+}
+
 // pbrt-v4 DenselySampledSpectrum lookup: value at the nearest integer wavelength, 0 outside
 // [360, 830]. t: one 471-entry table.
 LU_INLINE Float LookupDenseNearest(const Float *t, Float lambda) {
-    int offset = int(std::lround(lambda)) - int(LambdaMin);
-    if (offset < 0 || offset >= TabulatedSpectrumSize) return 0;
-    return t[offset];
+    int offset = DenseNearestOffset(lambda);
+    return offset < 0 ? 0 : t[offset];
 }
 
 // Sensor XYZ of one radiance sample (pbrt-v4 PixelSensor::ToSensorRGB, cie1931). Tables 0..2 of
@@ -25,8 +31,11 @@ LU_INLINE void SensorXYZ(const SampledSpectrum &L, const SampledWavelengths &lam
     Float sum[3] = {0, 0, 0};
     for (int i = 0; i < NSpectrumSamples; ++i) {
         Float v = lambda.pdf[i] != 0 ? L[i] / lambda.pdf[i] : 0;
+        // LookupDenseNearest's offset, once for the three tables.
+        int offset = DenseNearestOffset(lambda.lambda[i]);
+        bool inside = offset >= 0;
         for (int c = 0; c < 3; ++c)
-            sum[c] += LookupDenseNearest(tab.data + size_t(c) * TabulatedSpectrumSize, lambda.lambda[i]) * v;
+            sum[c] += (inside ? tab.data[size_t(c) * TabulatedSpectrumSize + offset] : Float(0)) * v;
     }
     for (int c = 0; c < 3; ++c) xyz[c] = imagingRatio * (sum[c] / NSpectrumSamples);
 }

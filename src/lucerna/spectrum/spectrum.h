@@ -69,9 +69,28 @@ LU_INLINE Float EvalSpectrum(const Spectrum &s, Float lambda, const SpectrumTabl
     return 0;
 }
 
+// EvalSpectrum at every wavelength, with the kind dispatched once (same values).
 LU_INLINE SampledSpectrum SampleSpectrum(const Spectrum &s, const SampledWavelengths &w, const SpectrumTables &tab) {
     SampledSpectrum r;
-    for (int i = 0; i < NSpectrumSamples; ++i) r[i] = EvalSpectrum(s, w.lambda[i], tab);
+    switch (s.kind) {
+    case SpectrumKind::Constant:
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = s.scale;
+        break;
+    case SpectrumKind::RGBAlbedo:
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = SigmoidPolynomial(s.c, w.lambda[i]);
+        break;
+    case SpectrumKind::RGBUnbounded:
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = s.scale * SigmoidPolynomial(s.c, w.lambda[i]);
+        break;
+    case SpectrumKind::RGBIlluminant: {
+        const Float *t = tab.data + size_t(s.table) * TabulatedSpectrumSize;
+        for (int i = 0; i < NSpectrumSamples; ++i)
+            r[i] = s.scale * SigmoidPolynomial(s.c, w.lambda[i]) * LookupTabulated(t, w.lambda[i]);
+        break;
+    }
+    default:
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = EvalSpectrum(s, w.lambda[i], tab);
+    }
     return r;
 }
 
