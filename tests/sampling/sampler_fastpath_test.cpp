@@ -2,7 +2,9 @@
 // versions of the same formulas (the pre-optimization code): every value must be bit-identical.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
+#include <vector>
 
 #include "lucerna/sampling/sampler.h"
 
@@ -69,7 +71,42 @@ uint64_t RefZSobolIndex(uint64_t mortonIndex, int dimension, int log2Spp, int nB
     return index;
 }
 
+// The digit-shuffle levels this CPU runs (0: scalar, 1: AVX2, 2: AVX-512).
+const std::vector<uint8_t> &SupportedLevels() {
+    static std::vector<uint8_t> levels = [] {
+        std::vector<uint8_t> l = {0};
+#if defined(LU_ZSOBOL_SIMD)
+        for (uint8_t i = 1; i <= detail::ZSobolSimdLevel(); ++i) l.push_back(i);
+#endif
+        return l;
+    }();
+    return levels;
+}
+
 }  // namespace
+
+TEST(SamplerFastPath, SimdDigitShufflesMatchReference) {
+    std::printf("ZSobol digit levels tested: %zu (0 scalar, 1 AVX2, 2 AVX-512)\n", SupportedLevels().size());
+    std::mt19937_64 rng(5);
+    for (int i = 0; i < 100000; ++i) {
+        int log2Spp = int(rng() % 2);   // exercise both the even and the odd (extra binary digit) layouts
+        int nDigits = 1 + int(rng() % 31);   // below 64 bits (pbrt-v4 shifts by 64 at 32 digits)
+        uint64_t rest = rng();
+        if (nDigits < 32) rest &= (uint64_t(1) << (2 * nDigits)) - 1;
+        int dimension = int(rng() % 4096) - (i % 7 == 0 ? 2048 : 0);
+        uint64_t morton = log2Spp ? (rest << 1) | (rng() & 1) : rest;
+        uint64_t ref = RefZSobolIndex(morton, dimension, log2Spp, nDigits + log2Spp);
+        Sampler s;
+        s.log2SamplesPerPixel = log2Spp;
+        s.nBase4Digits = nDigits + log2Spp;
+        s.mortonIndex = morton;
+        s.dimension = dimension;
+        for (uint8_t level : SupportedLevels()) {
+            s.simd = level;
+            ASSERT_EQ(s.ZSobolSampleIndex(), ref) << "level " << int(level) << " nDigits " << nDigits;
+        }
+    }
+}
 
 TEST(SamplerFastPath, BitUtilitiesMatchReference) {
     std::mt19937_64 rng(7);
@@ -103,6 +140,7 @@ TEST(SamplerFastPath, ZSobolIndexAndValuesMatchReference) {
         for (auto [w, h] : {std::pair{1, 1}, {32, 32}, {128, 128}, {192, 108}, {1280, 720}}) {
             Sampler s = MakeSampler("zsobol", spp, 3, w, h);
             for (int trial = 0; trial < 200; ++trial) {
+                s.simd = SupportedLevels()[trial % SupportedLevels().size()];
                 int x = int(rng() % w), y = int(rng() % h), index = int(rng() % (2 * spp));
                 s.StartPixelSample(x, y, index);
                 for (int dim = 0; dim < 40; ++dim) {

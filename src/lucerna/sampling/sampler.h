@@ -12,8 +12,120 @@
 #include <cstdio>
 #include <string>
 #endif
+#if (defined(__x86_64__) || defined(_M_X64)) && defined(__GNUC__) && !defined(__CUDACC__)
+#include <immintrin.h>
+#endif
 
 namespace lu {
+
+// ---- ZSobol digit shuffles, vectorized (x86-64 host only, chosen at run time) ----
+
+// ZSobolDigits*(rest, nDigits, dimMix): the nDigits base-4 digits of `rest` (digit k at bits 2k,
+// 1 <= nDigits <= 32), each replaced by PermuteBase4Digit(MixBits((rest >> (2k + 2)) ^ dimMix)
+// >> 24) % 24, digit): the scalar loop of Sampler::ZSobolSampleIndex, several digits per
+// instruction. Level 0 = scalar, 1 = AVX2, 2 = AVX-512 (F, DQ).
+#if (defined(__x86_64__) || defined(_M_X64)) && defined(__GNUC__) && !defined(__CUDACC__)
+#define LU_ZSOBOL_SIMD 1
+namespace detail {
+
+constexpr uint64_t kPermWords[3] = {0xb1e19c6c78d8b4e4ull, 0x72d236c68d2d39c9ull, 0x93634b1b87271e4eull};
+
+// Low 64 bits of x * c per lane, from 32-bit multiplies.
+__attribute__((target("avx2"))) inline __m256i MulLo64(__m256i x, uint64_t c) {
+    const __m256i cLo = _mm256_set1_epi64x(int64_t(c & 0xffffffffu)), cHi = _mm256_set1_epi64x(int64_t(c >> 32));
+    __m256i lo = _mm256_mul_epu32(x, cLo);
+    __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(x, 32), cLo), _mm256_mul_epu32(x, cHi));
+    return _mm256_add_epi64(lo, _mm256_slli_epi64(cross, 32));
+}
+
+// y % 24 per lane for y < 2^40: 8 ((y >> 3) % 3) + (y & 7), the mod 3 by folding (2^16 = 1 mod 3)
+// and an exact multiply-shift (t * 174763) >> 19 = t / 3 for t < 2^19.
+__attribute__((target("avx2"))) inline __m256i Mod24(__m256i y) {
+    const __m256i m32 = _mm256_set1_epi64x(0xffffffff), m16 = _mm256_set1_epi64x(0xffff);
+    __m256i z = _mm256_srli_epi64(y, 3);
+    __m256i t = _mm256_add_epi64(_mm256_and_si256(z, m32), _mm256_srli_epi64(z, 32));   // < 2^33
+    t = _mm256_add_epi64(_mm256_and_si256(t, m16), _mm256_srli_epi64(t, 16));           // < 2^18
+    __m256i q = _mm256_srli_epi64(_mm256_mul_epu32(t, _mm256_set1_epi64x(174763)), 19);
+    __m256i r3 = _mm256_sub_epi64(t, _mm256_add_epi64(q, _mm256_add_epi64(q, q)));
+    return _mm256_or_si256(_mm256_slli_epi64(r3, 3), _mm256_and_si256(y, _mm256_set1_epi64x(7)));
+}
+
+__attribute__((target("avx2"))) inline uint64_t ZSobolDigitsAVX2(uint64_t rest, int nDigits, uint64_t dimMix) {
+    const __m256i vRest = _mm256_set1_epi64x(int64_t(rest)), vDim = _mm256_set1_epi64x(int64_t(dimMix));
+    const __m256i w0 = _mm256_set1_epi64x(int64_t(kPermWords[0])), w1 = _mm256_set1_epi64x(int64_t(kPermWords[1])),
+                  w2 = _mm256_set1_epi64x(int64_t(kPermWords[2]));
+    const __m256i three = _mm256_set1_epi64x(3), seven = _mm256_set1_epi64x(7), fifteen = _mm256_set1_epi64x(15);
+    __m256i shift = _mm256_setr_epi64x(0, 2, 4, 6);   // 2k for the lanes' digits k
+    const __m256i step = _mm256_set1_epi64x(8), two = _mm256_set1_epi64x(2);
+    __m256i acc = _mm256_setzero_si256();
+    for (int k = 0; k < nDigits; k += 4) {
+        __m256i digit = _mm256_and_si256(_mm256_srlv_epi64(vRest, shift), three);
+        __m256i x = _mm256_xor_si256(_mm256_srlv_epi64(vRest, _mm256_add_epi64(shift, two)), vDim);   // 0 past 64 bits
+        x = _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
+        x = MulLo64(x, 0x7fb5d329728ea185ull);
+        x = _mm256_xor_si256(x, _mm256_srli_epi64(x, 27));
+        x = MulLo64(x, 0x81dadef4bc2dd44dull);
+        x = _mm256_xor_si256(x, _mm256_srli_epi64(x, 33));
+        __m256i p = Mod24(_mm256_srli_epi64(x, 24));
+        __m256i word = _mm256_blendv_epi8(w0, w1, _mm256_cmpgt_epi64(p, seven));
+        word = _mm256_blendv_epi8(word, w2, _mm256_cmpgt_epi64(p, fifteen));
+        __m256i perm = _mm256_srlv_epi64(word, _mm256_slli_epi64(_mm256_and_si256(p, seven), 3));
+        __m256i pd = _mm256_and_si256(_mm256_srlv_epi64(perm, _mm256_add_epi64(digit, digit)), three);
+        acc = _mm256_or_si256(acc, _mm256_sllv_epi64(pd, shift));   // lanes with 2k >= 64 add nothing
+        shift = _mm256_add_epi64(shift, step);
+    }
+    __m128i a = _mm_or_si128(_mm256_castsi256_si128(acc), _mm256_extracti128_si256(acc, 1));
+    uint64_t index = uint64_t(_mm_cvtsi128_si64(a)) | uint64_t(_mm_extract_epi64(a, 1));
+    // Lanes past the last digit (k >= nDigits) may have set bits at 2 nDigits and above.
+    return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
+}
+
+__attribute__((target("avx512f,avx512dq"))) inline uint64_t ZSobolDigitsAVX512(uint64_t rest, int nDigits,
+                                                                            uint64_t dimMix) {
+    const __m512i vRest = _mm512_set1_epi64(int64_t(rest)), vDim = _mm512_set1_epi64(int64_t(dimMix));
+    const __m512i words = _mm512_setr_epi64(int64_t(kPermWords[0]), int64_t(kPermWords[1]), int64_t(kPermWords[2]), 0,
+                                            0, 0, 0, 0);
+    const __m512i three = _mm512_set1_epi64(3), seven = _mm512_set1_epi64(7);
+    const __m512i m32 = _mm512_set1_epi64(0xffffffff), m16 = _mm512_set1_epi64(0xffff);
+    const __m512i c1 = _mm512_set1_epi64(int64_t(0x7fb5d329728ea185ull)), c2 = _mm512_set1_epi64(int64_t(0x81dadef4bc2dd44dull));
+    __m512i shift = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
+    const __m512i step = _mm512_set1_epi64(16), two = _mm512_set1_epi64(2);
+    __m512i acc = _mm512_setzero_si512();
+    for (int k = 0; k < nDigits; k += 8) {
+        __m512i digit = _mm512_and_si512(_mm512_srlv_epi64(vRest, shift), three);
+        __m512i x = _mm512_xor_si512(_mm512_srlv_epi64(vRest, _mm512_add_epi64(shift, two)), vDim);
+        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
+        x = _mm512_mullo_epi64(x, c1);
+        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 27));
+        x = _mm512_mullo_epi64(x, c2);
+        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 33));
+        __m512i y = _mm512_srli_epi64(x, 24);
+        __m512i z = _mm512_srli_epi64(y, 3);
+        __m512i t = _mm512_add_epi64(_mm512_and_si512(z, m32), _mm512_srli_epi64(z, 32));
+        t = _mm512_add_epi64(_mm512_and_si512(t, m16), _mm512_srli_epi64(t, 16));
+        __m512i q = _mm512_srli_epi64(_mm512_mul_epu32(t, _mm512_set1_epi64(174763)), 19);
+        __m512i r3 = _mm512_sub_epi64(t, _mm512_add_epi64(q, _mm512_add_epi64(q, q)));
+        __m512i p = _mm512_or_si512(_mm512_slli_epi64(r3, 3), _mm512_and_si512(y, seven));
+        __m512i word = _mm512_permutexvar_epi64(_mm512_srli_epi64(p, 3), words);
+        __m512i perm = _mm512_srlv_epi64(word, _mm512_slli_epi64(_mm512_and_si512(p, seven), 3));
+        __m512i pd = _mm512_and_si512(_mm512_srlv_epi64(perm, _mm512_add_epi64(digit, digit)), three);
+        acc = _mm512_or_si512(acc, _mm512_sllv_epi64(pd, shift));
+        shift = _mm512_add_epi64(shift, step);
+    }
+    uint64_t index = uint64_t(_mm512_reduce_or_epi64(acc));
+    return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
+}
+
+// The best level this CPU runs (what MakeSampler stores in Sampler::simd).
+inline uint8_t ZSobolSimdLevel() {
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) return 2;
+    if (__builtin_cpu_supports("avx2")) return 1;
+    return 0;
+}
+
+}  // namespace detail
+#endif
 
 enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified };
 
@@ -38,6 +150,9 @@ struct Sampler {
     // Stratified: xPixelSamples * yPixelSamples == samplesPerPixel.
     int xPixelSamples = 4, yPixelSamples = 4;
     bool jitter = true;
+    // ZSobol digit shuffles: 0 scalar, 1 AVX2, 2 AVX-512 (set by MakeSampler from the host CPU;
+    // device code always runs the scalar loop). Every level gives the same values.
+    uint8_t simd = 0;
 
     // ---- Per pixel-sample state (set by StartPixelSample) ----
     int px = 0, py = 0;
@@ -172,6 +287,11 @@ struct Sampler {
         uint64_t rest = mortonIndex >> pow2Samples;
         int nDigits = nBase4Digits - pow2Samples;
         uint64_t index = 0;
+#if defined(LU_ZSOBOL_SIMD)
+        if (simd != 0 && nDigits > 0) {
+            index = simd == 2 ? detail::ZSobolDigitsAVX512(rest, nDigits, dimMix) : detail::ZSobolDigitsAVX2(rest, nDigits, dimMix);
+        } else
+#endif
         if (nDigits > 0) {
             uint64_t higher = nDigits < 32 ? rest >> (2 * nDigits) : 0;   // digits above the top one
             uint64_t aligned = rest << (64 - 2 * nDigits);                // top digit in bits 62..63
@@ -223,6 +343,10 @@ inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width
     };
     Sampler s;
     s.seed = seed;
+#if defined(LU_ZSOBOL_SIMD)
+    static const uint8_t simdLevel = detail::ZSobolSimdLevel();
+    s.simd = simdLevel;
+#endif
     s.samplesPerPixel = Max(1, spp);
     bool roundZSobol = true;
     if (name == "independent") s.kind = SamplerKind::Independent;
