@@ -57,27 +57,31 @@ LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
 
 // Uniform sampling of the solid angle subtended by triangle v from p (Arvo 1995). Returns the
 // barycentrics of the sampled point; *pdf = 1 / solid angle, or 0 for degenerate triangles.
-// The same with the unit directions dir[i] = Normalize(v[i] - p) already computed (v[i] != p).
-LU_INLINE void SampleSphericalTriangleDirs(const Vec3f v[3], const Vec3f dir[3], const Vec3f &p, Vec2f u, Float b[3],
-                                           Float *pdf) {
+// This version takes the unit directions dir[i] = Normalize(v[i] - p) and the solid angle
+// area = SphericalTriangleArea(dir) (Van Oosterom & Strackee, accurate for small triangles).
+// Arvo's construction needs only cos and sin of the interior angle alpha at a, which come from
+// the normals of the planes (a, b) and (a, c) without an arcsine, and of A' = u0 * area.
+LU_INLINE void SampleSphericalTriangleDirs(const Vec3f v[3], const Vec3f dir[3], Float area, const Vec3f &p, Vec2f u,
+                                           Float b[3], Float *pdf) {
     *pdf = 0;
     b[0] = b[1] = b[2] = Float(1) / 3;
     const Vec3f &a = dir[0], &bb = dir[1], &c = dir[2];
-    Vec3f nab = Cross(a, bb), nbc = Cross(bb, c), nca = Cross(c, a);
-    if (LengthSquared(nab) == 0 || LengthSquared(nbc) == 0 || LengthSquared(nca) == 0) return;
-    nab = Normalize(nab); nbc = Normalize(nbc); nca = Normalize(nca);
-    // Interior angles at the vertices; the area is their sum minus pi.
-    Float alpha = AngleBetween(nab, -nca), beta = AngleBetween(nbc, -nab), gamma = AngleBetween(nca, -nbc);
-    Float areaPi = alpha + beta + gamma;
-    Float area = areaPi - Pi;
-    if (!(area > 0)) return;
+    Vec3f nab = Cross(a, bb), nca = Cross(c, a);
+    if (LengthSquared(nab) == 0 || LengthSquared(nca) == 0 || !(area > 0)) return;
+    nab = Normalize(nab); nca = Normalize(nca);
     *pdf = 1 / area;
-    // Sub-triangle area A' = u0 * A determines the point c' on the arc from a to c.
-    Float apPi = Lerp(u.x, Pi, areaPi);
-    double cosA = std::cos(double(alpha)), sinA = std::sin(double(alpha));
-    double sinAp = std::sin(double(apPi)), cosAp = std::cos(double(apPi));
-    double sinPhi = -sinAp * cosA + cosAp * sinA;
-    double cosPhi = -cosAp * cosA - sinAp * sinA;
+    // alpha = angle(nab, -nca).
+    double cosA = -double(Dot(nab, nca)), sinA = double(Length(Cross(nab, nca)));
+    double norm = std::sqrt(cosA * cosA + sinA * sinA);
+    if (!(norm > 0)) return;
+    cosA /= norm;
+    sinA /= norm;
+    // Sub-triangle area A' = u0 * area determines the point c' on the arc from a to c.
+    // phi = A' - alpha (pbrt-v4's A' + pi - alpha, with the pi folded into the signs).
+    double ap = double(u.x) * double(area);
+    double sinAp = std::sin(ap), cosAp = std::cos(ap);
+    double sinPhi = sinAp * cosA - cosAp * sinA;
+    double cosPhi = cosAp * cosA + sinAp * sinA;
     double k1 = cosPhi - cosA;
     double k2 = sinPhi + sinA * double(Dot(a, bb));
     double cosBp = ((k2 * cosPhi - k1 * sinPhi) * cosA - k2) / ((k2 * sinPhi + k1 * cosPhi) * sinA);
@@ -112,7 +116,7 @@ LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u
         return;
     }
     for (int i = 0; i < 3; ++i) dir[i] = Normalize(dir[i]);
-    SampleSphericalTriangleDirs(v, dir, p, u, b, pdf);
+    SampleSphericalTriangleDirs(v, dir, SphericalTriangleArea(dir[0], dir[1], dir[2]), p, u, b, pdf);
 }
 
 // The sample u that SampleSphericalTriangle maps to direction w (unit) from p.
@@ -265,7 +269,7 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
         }
         Float triPDF;
         // A finite solid angle means no vertex coincides with ctx.p (else dir would be NaN).
-        SampleSphericalTriangleDirs(t.p, dir, ctx.p, u, b, &triPDF);
+        SampleSphericalTriangleDirs(t.p, dir, sa, ctx.p, u, b, &triPDF);
         if (triPDF == 0) return false;
         pdf *= triPDF;
     }
