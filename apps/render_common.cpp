@@ -54,7 +54,7 @@ int PrepareRender(const RenderRequest &req, Prepared *out) {
     bool haveGpu = false;
 #if defined(LUCERNA_HAVE_CUDA)
     if (device != "cpu") haveGpu = CudaDeviceAvailable(&gpuName);
-    if (!haveGpu) whyNot = gpuName;
+    if (!haveGpu) whyNot = gpuName.rfind("no CUDA device: ", 0) == 0 ? gpuName.substr(16) : gpuName;
 #endif
     if (device == "cuda" && !haveGpu) {
         std::fprintf(stderr, "lucerna: --device cuda: no usable CUDA GPU (%s); use --device cpu or auto\n", whyNot.c_str());
