@@ -32,6 +32,7 @@ struct ConvergeArgs {
     int spp = 0, runs = 1, threads = 0, maxDepth = -1;
     long long seed = 0;
     double regRadius = -1;
+    double excludeAbove = 100;
     bool noReport = false;
 };
 
@@ -84,6 +85,38 @@ int RunConverge(const ConvergeArgs &a) {
         std::fprintf(stderr, "lucerna converge: %s\n", e.what());
         return ExitBadInput;
     }
+    // Directly visible emitters (reference above `excludeAbove`, dilated by the filter's pixel)
+    // make pixel errors a lottery on sub-pixel light hits that every integrator shares; they are
+    // excluded (set to zero in both images) unless --exclude-above 0.
+    std::vector<uint8_t> mask(size_t(ref.width) * ref.height, 0);
+    size_t masked = 0;
+    if (a.excludeAbove > 0)
+        for (int y = 0; y < ref.height; ++y)
+            for (int x = 0; x < ref.width; ++x) {
+                bool hot = false;
+                for (int c = 0; c < std::min(3, ref.channels); ++c) hot |= ref.At(x, y, c) > a.excludeAbove;
+                if (!hot) continue;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        int xx = x + dx, yy = y + dy;
+                        if (xx >= 0 && yy >= 0 && xx < ref.width && yy < ref.height) mask[size_t(yy) * ref.width + xx] = 1;
+                    }
+            }
+    for (uint8_t m : mask) masked += m;
+    auto applyMask = [&](Image &img) {
+        for (size_t p = 0; p < mask.size(); ++p)
+            if (mask[p])
+                for (int c = 0; c < img.channels; ++c) img.pixels[p * img.channels + c] = 0;
+    };
+    Image refMasked = ref;
+    applyMask(refMasked);
+    if (masked) std::fprintf(stderr, "converge: %zu pixels of directly visible emitters excluded from the errors\n", masked);
+    auto errors = [&](const Image &img) {
+        if (!masked) return ComputeErrors(img, ref);
+        Image m = img;
+        applyMask(m);
+        return ComputeErrors(m, refMasked);
+    };
     std::vector<std::string> integrators = Split(a.integrators);
     if (integrators.empty()) {
         std::fprintf(stderr, "lucerna converge: --integrators is empty\n");
@@ -136,7 +169,7 @@ int RunConverge(const ConvergeArgs &a) {
                 bool last = (a.spp > 0 && int(spp) >= a.spp) || (a.time > 0 && st.seconds >= a.time);
                 if (!pow2 && !timePoint && !last) return true;
                 Image img = film.Resolve(filmData);
-                ErrorStats e = ComputeErrors(img, ref);
+                ErrorStats e = errors(img);
                 csv << integ << ',' << run << ',' << spp << ',' << Num(st.seconds) << ',' << Num(e.mse) << ','
                     << Num(e.rmse) << ',' << Num(e.relMSE) << ',' << Num(e.mape) << '\n';
                 runSnaps.push_back({spp, st.seconds, std::move(img)});
@@ -148,7 +181,7 @@ int RunConverge(const ConvergeArgs &a) {
             if (rc != ExitOk) return rc;
             deviceName = out.device;
             std::fprintf(stderr, "converge: %s run %d: %u spp in %.2f s, final relMSE %s\n", integ.c_str(), run, film.passes,
-                         out.stats.seconds, runSnaps.empty() ? "-" : Num(ComputeErrors(runSnaps.back().image, ref).relMSE).c_str());
+                         out.stats.seconds, runSnaps.empty() ? "-" : Num(errors(runSnaps.back().image).relMSE).c_str());
         }
     }
     csv.close();
@@ -174,15 +207,16 @@ int RunConverge(const ConvergeArgs &a) {
                                         ? rs.back()
                                         : PickSnapshot(rs, bySpp, bySpp ? sppBudget : timeBudget);
                 if (run == 0) WriteBudgetImages(a.outDir, integ, budget, s, uint32_t(a.seed));
-                ErrorStats e = ComputeErrors(s.image, ref);
+                ErrorStats e = errors(s.image);
                 spp += s.spp; secs += s.seconds; mse += e.mse; rmse += e.rmse; relmse += e.relMSE; mape += e.mape;
                 images.push_back(s.image);
+                if (masked) applyMask(images.back());
             }
             double k = a.runs;
             fin << integ << ',' << budget << ',' << a.runs << ',' << Num(spp / k) << ',' << Num(secs / k) << ','
                 << Num(mse / k) << ',' << Num(rmse / k) << ',' << Num(relmse / k) << ',' << Num(mape / k);
             if (a.runs > 1) {
-                BiasVariance bv = ComputeBiasVariance(images, ref);
+                BiasVariance bv = ComputeBiasVariance(images, refMasked);
                 fin << ',' << Num(bv.bias2) << ',' << Num(bv.variance) << ',' << Num(bv.relBias2) << ',' << Num(bv.relVariance);
             } else {
                 fin << ",,,,";
@@ -198,7 +232,7 @@ int RunConverge(const ConvergeArgs &a) {
         std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
         std::ofstream j(a.outDir + "/run.json");
         j << "{\"scene\": \"" << a.scene << "\", \"reference\": \"" << a.ref << "\", \"width\": " << width
-          << ", \"height\": " << height << ", \"time\": " << (a.time > 0 ? Num(a.time) : "null")
+          << ", \"height\": " << height << ", \"excluded_pixels\": " << masked << ", \"time\": " << (a.time > 0 ? Num(a.time) : "null")
           << ", \"spp\": " << (a.spp > 0 ? std::to_string(a.spp) : "null") << ", \"runs\": " << a.runs
           << ", \"integrators\": [";
         for (size_t i = 0; i < integrators.size(); ++i) j << (i ? ", " : "") << '"' << integrators[i] << '"';
@@ -234,6 +268,9 @@ void RegisterConverge(CLI::App &app, CommandTable &table) {
     sub->add_option("--reg-radius", args->regRadius, "regpath: initial radius r0");
     sub->add_option("--device", args->device, "cpu, cuda or auto")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
     sub->add_flag("--no-report", args->noReport, "Skip the plots and index.html");
+    sub->add_option("--exclude-above", args->excludeAbove,
+                    "Exclude pixels (and their 8 neighbours) where the reference exceeds this value: directly visible "
+                    "emitters (default 100; 0 keeps every pixel)");
     sub->add_option("-o,--output", args->outDir, "Output directory")->required();
     table.Add(sub, [args] { return RunConverge(*args); });
 }
