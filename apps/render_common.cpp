@@ -156,8 +156,10 @@ std::string SummaryLine(const RenderOutcome &o) {
     const RenderStats &s = o.stats;
     double sec = std::max(1e-9, s.seconds);
     char buf[512];
-    std::snprintf(buf, sizeof buf, "spp %u  seconds %.3f  samples/s %.4g  rays/s %.4g  rejected %" PRIu64 "  device %s  integrator %s",
-                  o.passes, s.seconds, s.samples / sec, s.rays / sec, s.rejected, o.device.c_str(), o.integrator.c_str());
+    std::snprintf(buf, sizeof buf,
+                  "spp %u  seconds %.3f  samples/s %.4g  rays/s %.4g  rejected %" PRIu64 "  bvh %.3fs  device %s  integrator %s",
+                  o.passes, s.seconds, s.samples / sec, s.rays / sec, s.rejected, s.buildSeconds, o.device.c_str(),
+                  o.integrator.c_str());
     std::string line = buf;
     if (o.integrator == "regpath") {
         std::snprintf(buf, sizeof buf, "  regularized connections %" PRIu64 " (%.2f%% of energy)", s.regConnections,
