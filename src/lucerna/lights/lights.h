@@ -126,7 +126,7 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     case LightKind::DiffuseArea: {
         const Shape &shape = s.shapes[l.shape];
         ShapeSample ss;
-        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss) || !(ss.pdf > 0)) return false;
+        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss, /*wantUV=*/false) || !(ss.pdf > 0)) return false;
         Vec3f d = ss.p - ctx.p;
         Float dist = Length(d);
         if (dist == 0) return false;

@@ -322,7 +322,7 @@ LU_INLINE void SpherePointData(const Sphere &sp, const Vec3f &pObj, Vec3f *n, Ve
     *uv = Vec2f(phi / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
 }
 
-LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
+LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss, bool wantUV = true) {
     Vec3f pCenter = sp.renderFromObject.ApplyPoint(Vec3f(0, 0, 0));
     if (InsideSphere(sp, ctx, pCenter)) {
         // Uniform area sampling, converted to solid angle.
@@ -356,10 +356,12 @@ LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec
     Vec3f nOut = frame.FromLocal(-w);
     ss->p = pCenter + nOut * sp.radius;
     ss->n = ReverseOrientation(sp.flipNormals, sp.renderFromObject) ? -nOut : nOut;
-    Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
-    Float phiObj = std::atan2(pObj.y, pObj.x);
-    if (phiObj < 0) phiObj += 2 * Pi;
-    ss->uv = Vec2f(phiObj / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+    if (wantUV) {
+        Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
+        Float phiObj = std::atan2(pObj.y, pObj.x);
+        if (phiObj < 0) phiObj += 2 * Pi;
+        ss->uv = Vec2f(phiObj / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+    }
     ss->pdf = 1 / (2 * Pi * oneMinusCosThetaMax);
     return oneMinusCosThetaMax > 0;
 }
@@ -396,11 +398,13 @@ LU_INLINE bool SampleDisk(const Disk &dk, const LightSampleContext &ctx, Vec2f u
 }
 
 // Samples primitive `prim` of `shape` from ctx. Returns false (and no sample) on failure.
+// wantUV = false leaves ss->uv unset where computing it costs (the cone-sampled sphere); the
+// area lights' emission does not depend on uv.
 LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
-                           Vec2f u, ShapeSample *ss) {
+                           Vec2f u, ShapeSample *ss, bool wantUV = true) {
     switch (shape.kind) {
     case ShapeKind::Triangles: return SampleTriangle(s, shape, prim, ctx, u, ss);
-    case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss);
+    case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss, wantUV);
     case ShapeKind::Disk: return SampleDisk(s.disks[shape.index], ctx, u, ss);
     }
     return false;
