@@ -95,7 +95,13 @@ LU_INLINE const Distribution2D &ImageLightDistribution(const Light &l, const Sce
 // value to PDF_Li. pbrt-v4's PathIntegrator passes true.
 LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleContext &ctx, Vec2f u,
                         const SampledWavelengths &lambda, LightLiSample *ls, bool allowIncompletePDF = false) {
-    *ls = LightLiSample();
+    // The defaults of LightLiSample, stored field by field (a whole-struct assignment goes
+    // through a stack temporary whose narrow stores stall the wide reloads).
+    ls->L = SampledSpectrum(0);
+    ls->wi = ls->pLight = ls->nLight = Vec3f(0, 0, 0);
+    ls->pdf = 0;
+    ls->distance = Infinity;
+    ls->isDelta = false;
     switch (l.kind) {
     case LightKind::Point:
     case LightKind::Spot: {

@@ -35,10 +35,11 @@ struct SpectrumTables {
     uint32_t count = 0;
 };
 
+// Branch-free (a select), so that the loops over the wavelengths vectorize.
 LU_INLINE Float SigmoidPolynomial(const Float c[3], Float lambda) {
     Float x = (c[0] * lambda + c[1]) * lambda + c[2];
-    if (std::isinf(x)) return x > 0 ? 1 : 0;
-    return 0.5f + x / (2 * std::sqrt(1 + x * x));
+    Float y = 0.5f + x / (2 * std::sqrt(1 + x * x));
+    return std::isinf(x) ? (x > 0 ? Float(1) : Float(0)) : y;
 }
 
 LU_INLINE Float BlackbodyRadiance(Float lambdaNm, Float T) {
@@ -84,8 +85,8 @@ LU_INLINE SampledSpectrum SampleSpectrum(const Spectrum &s, const SampledWavelen
         break;
     case SpectrumKind::RGBIlluminant: {
         const Float *t = tab.data + size_t(s.table) * TabulatedSpectrumSize;
-        for (int i = 0; i < NSpectrumSamples; ++i)
-            r[i] = s.scale * SigmoidPolynomial(s.c, w.lambda[i]) * LookupTabulated(t, w.lambda[i]);
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = s.scale * SigmoidPolynomial(s.c, w.lambda[i]);  // vectorizes
+        for (int i = 0; i < NSpectrumSamples; ++i) r[i] = r[i] * LookupTabulated(t, w.lambda[i]);
         break;
     }
     default:
