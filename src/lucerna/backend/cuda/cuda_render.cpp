@@ -53,30 +53,27 @@ struct PassSlot {
 class PassPipeline {
   public:
     PassPipeline(int width, int height) {
-        Check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "cudaStreamCreate");
-        size_t pixels = size_t(width) * height;
-        for (PassSlot &s : slots_) {
-            s.xyzw.Allocate(pixels * 4);
-            s.counters.Allocate(1);
-            s.host.Resize(width, height);
-            if (!s.host.xyzw.empty()) {
-                s.registered = cudaHostRegister(s.host.xyzw.data(), s.host.xyzw.size() * sizeof(float),
-                                                cudaHostRegisterDefault) == cudaSuccess;
-                if (!s.registered) cudaGetLastError();   // pageable copies still work, only synchronously
+        try {
+            Check(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "cudaStreamCreate");
+            size_t pixels = size_t(width) * height;
+            for (PassSlot &s : slots_) {
+                s.xyzw.Allocate(pixels * 4);
+                s.counters.Allocate(1);
+                s.host.Resize(width, height);
+                if (!s.host.xyzw.empty()) {
+                    s.registered = cudaHostRegister(s.host.xyzw.data(), s.host.xyzw.size() * sizeof(float),
+                                                    cudaHostRegisterDefault) == cudaSuccess;
+                    if (!s.registered) cudaGetLastError();   // pageable copies still work, only synchronously
+                }
+                Check(cudaMallocHost(reinterpret_cast<void **>(&s.hostCounters), sizeof(PathPassCounters)), "cudaMallocHost");
+                Check(cudaEventCreateWithFlags(&s.done, cudaEventDisableTiming), "cudaEventCreate");
             }
-            Check(cudaMallocHost(reinterpret_cast<void **>(&s.hostCounters), sizeof(PathPassCounters)), "cudaMallocHost");
-            Check(cudaEventCreateWithFlags(&s.done, cudaEventDisableTiming), "cudaEventCreate");
+        } catch (...) {
+            Release();
+            throw;
         }
     }
-    ~PassPipeline() {
-        cudaStreamSynchronize(stream_);
-        for (PassSlot &s : slots_) {
-            if (s.registered) cudaHostUnregister(s.host.xyzw.data());
-            if (s.hostCounters) cudaFreeHost(s.hostCounters);
-            if (s.done) cudaEventDestroy(s.done);
-        }
-        cudaStreamDestroy(stream_);
-    }
+    ~PassPipeline() { Release(); }
     PassPipeline(const PassPipeline &) = delete;
     PassPipeline &operator=(const PassPipeline &) = delete;
 
@@ -105,6 +102,20 @@ class PassPipeline {
     }
 
   private:
+    void Release() noexcept {
+        if (stream_) cudaStreamSynchronize(stream_);
+        for (PassSlot &s : slots_) {
+            if (s.registered) cudaHostUnregister(s.host.xyzw.data());
+            if (s.hostCounters) cudaFreeHost(s.hostCounters);
+            if (s.done) cudaEventDestroy(s.done);
+            s.registered = false;
+            s.hostCounters = nullptr;
+            s.done = nullptr;
+        }
+        if (stream_) cudaStreamDestroy(stream_);
+        stream_ = nullptr;
+    }
+
     cudaStream_t stream_ = nullptr;
     PassSlot slots_[2];
 };
