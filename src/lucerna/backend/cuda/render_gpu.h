@@ -11,7 +11,7 @@ namespace lu {
 
 enum class GpuRenderMode : uint8_t {
     EyeLight,   // debug: |cos| between the geometric normal and the view direction, grey
-    Path        // the shared path integrator (integrators/path.h); not wired yet
+    Path        // not here: the path integrator runs in RenderCUDA (backend/cuda/cuda_render.h)
 };
 
 struct GpuRenderSettings {
@@ -23,7 +23,7 @@ struct GpuRenderSettings {
 
 // Renders the scene and returns width * height * 3 floats (linear RGB, row-major, top row
 // first). Throws CudaError on device failures and std::runtime_error for GpuRenderMode::Path
-// until the integrator is wired in.
+// (use RenderCUDA).
 std::vector<float> RenderGpu(const DeviceScene &scene, const GpuRenderSettings &settings);
 
 }  // namespace lu

@@ -1,5 +1,5 @@
-// Lucerna CUDA backend: the path-tracing megakernel. One thread renders all samples of one
-// pixel; the per-path work is the shared LU_HD code, so CPU and GPU trace the same paths.
+// Lucerna CUDA backend: the eye-light debug kernel (RenderGpu): one thread renders all samples of
+// one pixel with |cos| shading over the shared BVH. The path integrator runs in cuda_render.cu.
 #include <cuda_runtime.h>
 
 #include <stdexcept>
@@ -47,11 +47,8 @@ __global__ void RenderKernel(SceneView scene, BVHView bvh, KernelParams params, 
     float sum[3] = {0, 0, 0};
     for (int s = 0; s < params.spp; ++s) {
         Ray ray = CameraRay(scene.camera, (x + uniform()) * sx, (y + uniform()) * sy);
-        // ---- Integrator body ----
-        // GpuRenderMode::Path will call the shared path integrator here (integrators/path.h,
-        // LU_HD): it takes (scene, bvh, ray, sampler state, wavelengths) and returns the sample's
-        // spectral radiance; film accumulation (filter weight, XYZ -> RGB) follows below.
-        // Ray queries inside it go through IntersectClosest / IntersectAny (bvh_traverse.h).
+        // The path integrator itself runs in PathKernel (cuda_render.cu, RenderCUDA); this
+        // kernel stays a debug view of the geometry.
         HitRecord hit;
         if (IntersectClosest(bvh, scene, ray, &hit)) {
             SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
@@ -68,7 +65,7 @@ __global__ void RenderKernel(SceneView scene, BVHView bvh, KernelParams params, 
 
 std::vector<float> RenderGpu(const DeviceScene &scene, const GpuRenderSettings &settings) {
     if (settings.mode == GpuRenderMode::Path)
-        throw std::runtime_error("RenderGpu: the path integrator is not wired into the CUDA megakernel yet");
+        throw std::runtime_error("RenderGpu: the path integrator runs in RenderCUDA (backend/cuda/cuda_render.h)");
     KernelParams p;
     p.width = settings.width > 0 ? settings.width : scene.View().film.width;
     p.height = settings.height > 0 ? settings.height : scene.View().film.height;
