@@ -80,6 +80,10 @@ __attribute__((target("avx2"))) inline uint64_t ZSobolDigitsAVX2(uint64_t rest, 
     return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
 }
 
+// GCC 12's AVX-512 intrinsic headers trip -Wmaybe-uninitialized (their _mm512_undefined_*).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 __attribute__((target("avx512f,avx512dq"))) inline uint64_t ZSobolDigitsAVX512(uint64_t rest, int nDigits,
                                                                             uint64_t dimMix) {
     const __m512i vRest = _mm512_set1_epi64(int64_t(rest)), vDim = _mm512_set1_epi64(int64_t(dimMix));
@@ -115,6 +119,7 @@ __attribute__((target("avx512f,avx512dq"))) inline uint64_t ZSobolDigitsAVX512(u
     uint64_t index = uint64_t(_mm512_reduce_or_epi64(acc));
     return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
 }
+#pragma GCC diagnostic pop
 
 // The best level this CPU runs (what MakeSampler stores in Sampler::simd).
 inline uint8_t ZSobolSimdLevel() {

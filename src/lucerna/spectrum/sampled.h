@@ -4,17 +4,38 @@
 
 #include "lucerna/util/common.h"
 
+#if (defined(__x86_64__) || defined(_M_X64)) && !defined(__CUDA_ARCH__) && defined(__GNUC__)
+#include <xmmintrin.h>
+#define LU_SPECTRUM_SSE 1
+#endif
+
 namespace lu {
 
 constexpr int NSpectrumSamples = 4;
 constexpr Float LambdaMin = 360, LambdaMax = 830;
 
+// On x86-64 hosts the samples are one SSE vector (GCC/Clang vector extension: v[i] reads and
+// writes sample i, arithmetic is elementwise): the psABI then passes and returns a SampledSpectrum
+// in one xmm register instead of two 8-byte halves, which callers stored and reloaded as a whole
+// (a store-forwarding stall per non-inlined call), and the operators are single SSE instructions
+// with the same IEEE results. Device code gets a plain array of the same size and alignment.
+// All host code (nvcc's host pass included) must see the same choice: the functions returning a
+// SampledSpectrum are inline, and one copy of each is kept at link time.
 struct SampledSpectrum {
-    Float v[NSpectrumSamples];
+#if defined(LU_SPECTRUM_SSE)
+    static_assert(NSpectrumSamples == 4, "one __m128 per SampledSpectrum");
+    __m128 v;
+    SampledSpectrum() : v(_mm_setzero_ps()) {}
+    explicit SampledSpectrum(Float c) : v(_mm_set1_ps(c)) {}
+#define LU_SS_OP(op)                                                                        \
+    SampledSpectrum operator op(const SampledSpectrum &b) const { SampledSpectrum r; r.v = v op b.v; return r; } \
+    SampledSpectrum &operator op##=(const SampledSpectrum &b) { v = v op b.v; return *this; }                 \
+    SampledSpectrum operator op(Float s) const { SampledSpectrum r; r.v = v op _mm_set1_ps(s); return r; }   \
+    SampledSpectrum &operator op##=(Float s) { v = v op _mm_set1_ps(s); return *this; }
+#else
+    alignas(16) Float v[NSpectrumSamples];
     LU_HD SampledSpectrum() { for (int i = 0; i < NSpectrumSamples; ++i) v[i] = 0; }
     LU_HD explicit SampledSpectrum(Float c) { for (int i = 0; i < NSpectrumSamples; ++i) v[i] = c; }
-    LU_HD Float operator[](int i) const { return v[i]; }
-    LU_HD Float &operator[](int i) { return v[i]; }
 #define LU_SS_OP(op)                                                                        \
     LU_HD SampledSpectrum operator op(const SampledSpectrum &b) const {                     \
         SampledSpectrum r;                                                                  \
@@ -34,6 +55,9 @@ struct SampledSpectrum {
         for (int i = 0; i < NSpectrumSamples; ++i) { v[i] op## = s; }                       \
         return *this;                                                                       \
     }
+#endif
+    LU_HD Float operator[](int i) const { return v[i]; }
+    LU_HD Float &operator[](int i) { return v[i]; }
     LU_SS_OP(+) LU_SS_OP(-) LU_SS_OP(*) LU_SS_OP(/)
 #undef LU_SS_OP
     LU_HD bool IsBlack() const { for (int i = 0; i < NSpectrumSamples; ++i) if (v[i] != 0) return false; return true; }
