@@ -23,7 +23,7 @@ namespace lu {
 // ZSobolDigits*(rest, nDigits, dimMix): the nDigits base-4 digits of `rest` (digit k at bits 2k,
 // 1 <= nDigits <= 32), each replaced by PermuteBase4Digit(MixBits((rest >> (2k + 2)) ^ dimMix)
 // >> 24) % 24, digit): the scalar loop of Sampler::ZSobolSampleIndex, several digits per
-// instruction. Level 0 = scalar, 1 = AVX2, 2 = AVX-512 (F, DQ).
+// instruction. Level 0 = scalar, 1 = AVX2, 2 = AVX-512 (F, DQ), 3 = AVX-512 (F, DQ, BW, VBMI).
 #if (defined(__x86_64__) || defined(_M_X64)) && defined(__GNUC__) && !defined(__CUDACC__)
 #define LU_ZSOBOL_SIMD 1
 namespace detail {
@@ -84,37 +84,65 @@ __attribute__((target("avx2"))) inline uint64_t ZSobolDigitsAVX2(uint64_t rest, 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
+// y % 24 for y < 2^40 in doubles: q = floor(fma(y, 1/24, 2^-10)) is exactly floor(y / 24) (the
+// error, below 2^-16, cannot cross an integer: y / 24 has a fraction 0 or >= 1/24 and at most
+// 23/24), and y - 24 q is exact.
+__attribute__((target("avx512f,avx512dq"))) inline __m512i Mod24AVX512(__m512i y) {
+    __m512d yd = _mm512_cvtepu64_pd(y);
+    __m512d t = _mm512_fmadd_pd(yd, _mm512_set1_pd(1.0 / 24), _mm512_set1_pd(0x1p-10));
+    __m512d q = _mm512_roundscale_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    return _mm512_cvttpd_epu64(_mm512_fnmadd_pd(q, _mm512_set1_pd(24), yd));
+}
+
+// One step of 8 digits (lanes k = shift / 2): the digit and its permutation number p.
+__attribute__((target("avx512f,avx512dq"))) inline __m512i ZSobolPerm8(__m512i vRest, __m512i shift, __m512i vDim,
+                                                                       __m512i *digit) {
+    *digit = _mm512_and_si512(_mm512_srlv_epi64(vRest, shift), _mm512_set1_epi64(3));
+    __m512i x = _mm512_xor_si512(_mm512_srlv_epi64(vRest, _mm512_add_epi64(shift, _mm512_set1_epi64(2))), vDim);
+    x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
+    x = _mm512_mullo_epi64(x, _mm512_set1_epi64(int64_t(0x7fb5d329728ea185ull)));
+    x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 27));
+    x = _mm512_mullo_epi64(x, _mm512_set1_epi64(int64_t(0x81dadef4bc2dd44dull)));
+    x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 33));
+    return Mod24AVX512(_mm512_srli_epi64(x, 24));
+}
+
+// Level 2: AVX-512 F + DQ.
 __attribute__((target("avx512f,avx512dq"))) inline uint64_t ZSobolDigitsAVX512(uint64_t rest, int nDigits,
                                                                             uint64_t dimMix) {
     const __m512i vRest = _mm512_set1_epi64(int64_t(rest)), vDim = _mm512_set1_epi64(int64_t(dimMix));
     const __m512i words = _mm512_setr_epi64(int64_t(kPermWords[0]), int64_t(kPermWords[1]), int64_t(kPermWords[2]), 0,
                                             0, 0, 0, 0);
     const __m512i three = _mm512_set1_epi64(3), seven = _mm512_set1_epi64(7);
-    const __m512i m32 = _mm512_set1_epi64(0xffffffff), m16 = _mm512_set1_epi64(0xffff);
-    const __m512i c1 = _mm512_set1_epi64(int64_t(0x7fb5d329728ea185ull)), c2 = _mm512_set1_epi64(int64_t(0x81dadef4bc2dd44dull));
-    __m512i shift = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
-    const __m512i step = _mm512_set1_epi64(16), two = _mm512_set1_epi64(2);
-    __m512i acc = _mm512_setzero_si512();
+    __m512i shift = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), acc = _mm512_setzero_si512();
     for (int k = 0; k < nDigits; k += 8) {
-        __m512i digit = _mm512_and_si512(_mm512_srlv_epi64(vRest, shift), three);
-        __m512i x = _mm512_xor_si512(_mm512_srlv_epi64(vRest, _mm512_add_epi64(shift, two)), vDim);
-        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 31));
-        x = _mm512_mullo_epi64(x, c1);
-        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 27));
-        x = _mm512_mullo_epi64(x, c2);
-        x = _mm512_xor_si512(x, _mm512_srli_epi64(x, 33));
-        __m512i y = _mm512_srli_epi64(x, 24);
-        __m512i z = _mm512_srli_epi64(y, 3);
-        __m512i t = _mm512_add_epi64(_mm512_and_si512(z, m32), _mm512_srli_epi64(z, 32));
-        t = _mm512_add_epi64(_mm512_and_si512(t, m16), _mm512_srli_epi64(t, 16));
-        __m512i q = _mm512_srli_epi64(_mm512_mul_epu32(t, _mm512_set1_epi64(174763)), 19);
-        __m512i r3 = _mm512_sub_epi64(t, _mm512_add_epi64(q, _mm512_add_epi64(q, q)));
-        __m512i p = _mm512_or_si512(_mm512_slli_epi64(r3, 3), _mm512_and_si512(y, seven));
+        __m512i digit, p = ZSobolPerm8(vRest, shift, vDim, &digit);
         __m512i word = _mm512_permutexvar_epi64(_mm512_srli_epi64(p, 3), words);
         __m512i perm = _mm512_srlv_epi64(word, _mm512_slli_epi64(_mm512_and_si512(p, seven), 3));
         __m512i pd = _mm512_and_si512(_mm512_srlv_epi64(perm, _mm512_add_epi64(digit, digit)), three);
         acc = _mm512_or_si512(acc, _mm512_sllv_epi64(pd, shift));
-        shift = _mm512_add_epi64(shift, step);
+        shift = _mm512_add_epi64(shift, _mm512_set1_epi64(16));
+    }
+    uint64_t index = uint64_t(_mm512_reduce_or_epi64(acc));
+    return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
+}
+
+// Level 3: + VBMI, the 96-entry PermuteBase4Digit table in one byte permute (index 4 p + digit in
+// each lane's low byte; the other index bytes are 0 and read entry 0, which is 0).
+__attribute__((target("avx512f,avx512dq,avx512bw,avx512vbmi"))) inline uint64_t ZSobolDigitsAVX512VBMI(
+    uint64_t rest, int nDigits, uint64_t dimMix) {
+    alignas(64) static constexpr uint8_t table[128] = {
+        0, 1, 2, 3, 0, 1, 3, 2, 0, 2, 1, 3, 0, 2, 3, 1, 0, 3, 2, 1, 0, 3, 1, 2, 1, 0, 2, 3, 1, 0, 3, 2,
+        1, 2, 0, 3, 1, 2, 3, 0, 1, 3, 2, 0, 1, 3, 0, 2, 2, 1, 0, 3, 2, 1, 3, 0, 2, 0, 1, 3, 2, 0, 3, 1,
+        2, 3, 0, 1, 2, 3, 1, 0, 3, 1, 2, 0, 3, 1, 0, 2, 3, 2, 1, 0, 3, 2, 0, 1, 3, 0, 2, 1, 3, 0, 1, 2};
+    const __m512i vRest = _mm512_set1_epi64(int64_t(rest)), vDim = _mm512_set1_epi64(int64_t(dimMix));
+    const __m512i tableLo = _mm512_load_si512(table), tableHi = _mm512_load_si512(table + 64);
+    __m512i shift = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), acc = _mm512_setzero_si512();
+    for (int k = 0; k < nDigits; k += 8) {
+        __m512i digit, p = ZSobolPerm8(vRest, shift, vDim, &digit);
+        __m512i pd = _mm512_permutex2var_epi8(tableLo, _mm512_or_si512(_mm512_slli_epi64(p, 2), digit), tableHi);
+        acc = _mm512_or_si512(acc, _mm512_sllv_epi64(pd, shift));
+        shift = _mm512_add_epi64(shift, _mm512_set1_epi64(16));
     }
     uint64_t index = uint64_t(_mm512_reduce_or_epi64(acc));
     return nDigits >= 32 ? index : index & ((uint64_t(1) << (2 * nDigits)) - 1);
@@ -124,7 +152,10 @@ __attribute__((target("avx512f,avx512dq"))) inline uint64_t ZSobolDigitsAVX512(u
 // The best level this CPU runs (what MakeSampler stores in Sampler::simd).
 inline uint8_t ZSobolSimdLevel() {
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) return 2;
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+        if (__builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vbmi")) return 3;
+        return 2;
+    }
     if (__builtin_cpu_supports("avx2")) return 1;
     return 0;
 }
@@ -155,7 +186,7 @@ struct Sampler {
     // Stratified: xPixelSamples * yPixelSamples == samplesPerPixel.
     int xPixelSamples = 4, yPixelSamples = 4;
     bool jitter = true;
-    // ZSobol digit shuffles: 0 scalar, 1 AVX2, 2 AVX-512 (set by MakeSampler from the host CPU;
+    // ZSobol digit shuffles: 0 scalar, 1 AVX2, 2 AVX-512, 3 AVX-512 VBMI (set by MakeSampler from the host CPU;
     // device code always runs the scalar loop). Every level gives the same values.
     uint8_t simd = 0;
 
@@ -294,7 +325,9 @@ struct Sampler {
         uint64_t index = 0;
 #if defined(LU_ZSOBOL_SIMD)
         if (simd != 0 && nDigits > 0) {
-            index = simd == 2 ? detail::ZSobolDigitsAVX512(rest, nDigits, dimMix) : detail::ZSobolDigitsAVX2(rest, nDigits, dimMix);
+            index = simd == 3   ? detail::ZSobolDigitsAVX512VBMI(rest, nDigits, dimMix)
+                    : simd == 2 ? detail::ZSobolDigitsAVX512(rest, nDigits, dimMix)
+                                : detail::ZSobolDigitsAVX2(rest, nDigits, dimMix);
         } else
 #endif
         if (nDigits > 0) {
