@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 SHARED=${LUCERNA_SHARED_DIR:-../shared}
 SPP=${1:-64}
 THREADS=${2:-2}
-BIN=build/lucerna
+BIN=${LUCERNA_BIN:-build/lucerna}
 [ -x "$BIN" ] || { echo "build first (scripts/build.sh)"; exit 1; }
 out=$(mktemp -d)
 printf "%-22s %-9s %5s %9s %8s %12s %12s %14s %8s\n" scene res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio

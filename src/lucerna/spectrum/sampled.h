@@ -84,13 +84,17 @@ LU_INLINE SampledSpectrum ClampZero(const SampledSpectrum &a) {
 
 // Visible-importance wavelength sampling, pdf proportional to 1/cosh^2(0.0072 (lambda - 538)),
 // restricted to [360, 830] nm (pbrt-v4's SampleVisibleWavelengths).
+// Evaluated as 1 / cosh^2(x) = 4 e^(2x) / (1 + e^(2x))^2 and atanh(y) = log((1 + y) / (1 - y)) / 2:
+// one expf or logf each instead of coshf (two exponentials) and atanhf (log1pf), equal up to
+// float rounding.
 LU_INLINE Float VisibleWavelengthsPDF(Float lambda) {
     if (lambda < 360 || lambda > 830) return 0;
-    Float c = std::cosh(0.0072f * (lambda - 538));
-    return 0.0039398042f / (c * c);
+    Float e = std::exp(0.0144f * (lambda - 538));   // 0.0144f is exactly 2 * 0.0072f
+    return 0.0039398042f * 4 * e / ((1 + e) * (1 + e));
 }
 LU_INLINE Float SampleVisibleWavelength(Float u) {
-    return 538 - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
+    Float y = 0.85691062f - 1.82750197f * u;
+    return 538 - 138.888889f * (0.5f * std::log((1 + y) / (1 - y)));
 }
 
 struct SampledWavelengths {
