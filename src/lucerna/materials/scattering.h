@@ -70,9 +70,31 @@ LU_INLINE Float FrComplex(Float cosTheta_i, Complex eta) {
     return (Norm(rParl) + Norm(rPerp)) / 2;
 }
 
+// The scalar FrComplex per wavelength, written branch-free (selects) so that the loops vectorize;
+// every lane computes the same IEEE operations, hence the same values.
 LU_INLINE SampledSpectrum FrComplex(Float cosTheta_i, const SampledSpectrum &eta, const SampledSpectrum &k) {
+    cosTheta_i = Clamp(cosTheta_i, Float(0), Float(1));
+    Float sin2Theta_i = 1 - Sqr(cosTheta_i);
+    Float er[NSpectrumSamples], ei[NSpectrumSamples], out[NSpectrumSamples];
+    for (int i = 0; i < NSpectrumSamples; ++i) { er[i] = eta[i]; ei[i] = k[i]; }
+    for (int i = 0; i < NSpectrumSamples; ++i) {
+        Complex e(er[i], ei[i]);
+        Complex sin2Theta_t = Complex(sin2Theta_i) / (e * e);
+        Complex z = Complex(1) - sin2Theta_t;
+        // Sqrt(z), principal branch, as Sqrt() above.
+        Float n = std::sqrt(Norm(z));
+        Float t1 = std::sqrt(Float(0.5) * (n + std::abs(z.re)));
+        Float t2 = Float(0.5) * z.im / t1;
+        bool pos = z.re >= 0;
+        Complex cosTheta_t(n == 0 ? Float(0) : (pos ? t1 : std::abs(t2)),
+                           n == 0 ? Float(0) : (pos ? t2 : std::copysign(t1, z.im)));
+        Complex ci(cosTheta_i);
+        Complex rParl = (e * ci - cosTheta_t) / (e * ci + cosTheta_t);
+        Complex rPerp = (ci - e * cosTheta_t) / (ci + e * cosTheta_t);
+        out[i] = (Norm(rParl) + Norm(rPerp)) / 2;
+    }
     SampledSpectrum r;
-    for (int i = 0; i < NSpectrumSamples; ++i) r[i] = FrComplex(cosTheta_i, Complex(eta[i], k[i]));
+    for (int i = 0; i < NSpectrumSamples; ++i) r[i] = out[i];
     return r;
 }
 
