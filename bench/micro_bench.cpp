@@ -222,13 +222,59 @@ void BM_BSDFEvalAndSample(benchmark::State &state) {
 }
 BENCHMARK(BM_BSDFEvalAndSample);
 
+// ---- Ray queries (Embree): rays from the camera's first hits in random directions ----
+
+std::vector<Ray> SecondaryRays(CornellData &d) {
+    std::vector<Ray> rays;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> uni(0.f, 1.f);
+    for (size_t i = 0; i < 4096; ++i) {
+        const SurfaceInteraction &si = d.points[i % d.points.size()];
+        Frame f = Frame::FromZ(si.n);
+        Ray r;
+        r.d = f.FromLocal(SampleCosineHemisphere(Vec2f(uni(rng), uni(rng))));
+        r.o = OffsetRayOrigin(si.p, si.n, r.d);
+        r.tMax = Infinity;
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+void BM_EmbreeIntersect(benchmark::State &state) {
+    CornellData &d = Cornell();
+    std::vector<Ray> rays = SecondaryRays(d);
+    size_t i = 0;
+    Float acc = 0;
+    for (auto _ : state) {
+        HitRecord hit;
+        if (d.embree->Intersect(rays[i++ & 4095], &hit)) acc += hit.t;
+    }
+    benchmark::DoNotOptimize(acc);
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EmbreeIntersect);
+
+void BM_EmbreeOccluded(benchmark::State &state) {
+    CornellData &d = Cornell();
+    std::vector<Ray> rays = SecondaryRays(d);
+    for (Ray &r : rays) r.tMax = 0.5f;
+    size_t i = 0;
+    int acc = 0;
+    for (auto _ : state) acc += d.embree->Occluded(rays[i++ & 4095]);
+    benchmark::DoNotOptimize(acc);
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EmbreeOccluded);
+
 // ---- Whole camera samples (1 thread, the scene's maxdepth): samples per second ----
 
-void BM_RenderSampleCornell(benchmark::State &state) {
+// Argument: spp; the second benchmark uses the independent sampler (what pbrt-v4's reference
+// renders used), so the difference is the cost of ZSobol in context.
+void RenderSampleCornell(benchmark::State &state, const char *samplerName) {
     CornellData &d = Cornell();
     EmbreeTracer tracer{d.embree.get()};
     int spp = int(state.range(0));
-    Sampler sampler = MakeSampler("zsobol", spp, 0, 64, 64);
+    Sampler sampler = MakeSampler(samplerName, spp, 0, 64, 64);
     PathSettings ps;
     ps.maxDepth = d.host->settings.maxDepth;
     PathStats st;
@@ -244,7 +290,10 @@ void BM_RenderSampleCornell(benchmark::State &state) {
     state.SetItemsProcessed(state.iterations());
     state.counters["rays/sample"] = benchmark::Counter(double(st.rays) / double(state.iterations()));
 }
+void BM_RenderSampleCornell(benchmark::State &state) { RenderSampleCornell(state, "zsobol"); }
+void BM_RenderSampleCornellIndependent(benchmark::State &state) { RenderSampleCornell(state, "independent"); }
 BENCHMARK(BM_RenderSampleCornell)->Arg(64)->Arg(8192);
+BENCHMARK(BM_RenderSampleCornellIndependent)->Arg(8192);
 
 }  // namespace
 

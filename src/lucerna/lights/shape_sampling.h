@@ -61,8 +61,8 @@ LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
 // area = SphericalTriangleArea(dir) (Van Oosterom & Strackee, accurate for small triangles).
 // Arvo's construction needs only cos and sin of the interior angle alpha at a, which come from
 // the normals of the planes (a, b) and (a, c) without an arcsine, and of A' = u0 * area.
-LU_INLINE void SampleSphericalTriangleDirs(const Vec3f v[3], const Vec3f dir[3], Float area, const Vec3f &p, Vec2f u,
-                                           Float b[3], Float *pdf) {
+LU_INLINE void SampleSphericalTriangleDirs(const Vec3f &v0, const Vec3f &v1, const Vec3f &v2, const Vec3f dir[3],
+                                           Float area, const Vec3f &p, Vec2f u, Float b[3], Float *pdf) {
     *pdf = 0;
     b[0] = b[1] = b[2] = Float(1) / 3;
     const Vec3f &a = dir[0], &bb = dir[1], &c = dir[2];
@@ -95,12 +95,12 @@ LU_INLINE void SampleSphericalTriangleDirs(const Vec3f v[3], const Vec3f dir[3],
     Vec3f gs = GramSchmidt(cp, bb);
     Vec3f w = bb * cosTheta + (LengthSquared(gs) > 0 ? Normalize(gs) : Vec3f()) * sinTheta;
     // Barycentrics of the ray (p, w) against the planar triangle (Moller-Trumbore).
-    Vec3f e1 = v[1] - v[0], e2 = v[2] - v[0];
+    Vec3f e1 = v1 - v0, e2 = v2 - v0;
     Vec3f s1 = Cross(w, e2);
     Float divisor = Dot(s1, e1);
     if (divisor == 0) return;
     Float inv = 1 / divisor;
-    Vec3f s = p - v[0];
+    Vec3f s = p - v0;
     Float b1 = Clamp(Dot(s, s1) * inv, Float(0), Float(1));
     Float b2 = Clamp(Dot(w, Cross(s, e1)) * inv, Float(0), Float(1));
     Float sum = b1 + b2;
@@ -116,7 +116,7 @@ LU_INLINE void SampleSphericalTriangle(const Vec3f v[3], const Vec3f &p, Vec2f u
         return;
     }
     for (int i = 0; i < 3; ++i) dir[i] = Normalize(dir[i]);
-    SampleSphericalTriangleDirs(v, dir, SphericalTriangleArea(dir[0], dir[1], dir[2]), p, u, b, pdf);
+    SampleSphericalTriangleDirs(v[0], v[1], v[2], dir, SphericalTriangleArea(dir[0], dir[1], dir[2]), p, u, b, pdf);
 }
 
 // The sample u that SampleSphericalTriangle maps to direction w (unit) from p.
@@ -196,11 +196,25 @@ LU_INLINE TriangleData GetTriangle(const SceneView &s, const TriangleMesh &m, ui
     return t;
 }
 
+// The same without copies: references to the positions in the scene arrays. (Copying 12-byte
+// vectors to the stack and reloading them as 16-byte vectors right away stalls store forwarding:
+// 11% of SampleLi's time.)
+struct TriangleRef {
+    const Vec3f &p0, &p1, &p2;
+    uint32_t v[3];  // absolute vertex indices
+};
+
+LU_INLINE TriangleRef GetTriangleRef(const SceneView &s, const TriangleMesh &m, uint32_t prim) {
+    const uint32_t *idx = s.indices.ptr + m.firstIndex + 3 * prim;
+    uint32_t v0 = m.firstVertex + idx[0], v1 = m.firstVertex + idx[1], v2 = m.firstVertex + idx[2];
+    return TriangleRef{s.positions[v0], s.positions[v1], s.positions[v2], {v0, v1, v2}};
+}
+
 // Geometric normal and uv at barycentrics b, oriented as pbrt-v4's Triangle (flip, or facing the
-// interpolated shading normal when the mesh has normals).
-LU_INLINE void TriangleNormalUV(const SceneView &s, const TriangleMesh &m, const TriangleData &t, const Float b[3],
+// interpolated shading normal when the mesh has normals). uv is skipped when null.
+LU_INLINE void TriangleNormalUV(const SceneView &s, const TriangleMesh &m, const TriangleRef &t, const Float b[3],
                                 Vec3f *n, Vec2f *uv) {
-    Vec3f ng = Normalize(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+    Vec3f ng = Normalize(Cross(t.p1 - t.p0, t.p2 - t.p0));
     if (m.flipNormals) ng = -ng;
     if (m.normalOffset != NoIndex) {
         Vec3f ns = s.normals[m.normalOffset + (t.v[0] - m.firstVertex)] * b[0] +
@@ -209,6 +223,7 @@ LU_INLINE void TriangleNormalUV(const SceneView &s, const TriangleMesh &m, const
         if (LengthSquared(ns) > 0) ng = FaceForward(ng, ns);
     }
     *n = ng;
+    if (!uv) return;
     Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
     if (m.uvOffset != NoIndex) {
         uv0 = s.uvs[m.uvOffset + (t.v[0] - m.firstVertex)];
@@ -231,8 +246,10 @@ LU_INLINE void TriangleCosWeights(const TriangleData &t, const LightSampleContex
     TriangleCosWeights(dir, ctx, w);
 }
 
-LU_INLINE void TriangleDirections(const TriangleData &t, const Vec3f &p, Vec3f dir[3]) {
-    for (int i = 0; i < 3; ++i) dir[i] = Normalize(t.p[i] - p);
+LU_INLINE void TriangleDirections(const TriangleRef &t, const Vec3f &p, Vec3f dir[3]) {
+    dir[0] = Normalize(t.p0 - p);
+    dir[1] = Normalize(t.p1 - p);
+    dir[2] = Normalize(t.p2 - p);
 }
 
 LU_INLINE Float TriangleSolidAngle(const TriangleData &t, const Vec3f &p) {
@@ -248,9 +265,9 @@ LU_INLINE Float AreaToSolidAnglePDF(Float pdfA, const Vec3f &ref, const Vec3f &p
 }
 
 LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
-                              Vec2f u, ShapeSample *ss) {
+                              Vec2f u, ShapeSample *ss, bool wantUV = true) {
     const TriangleMesh &m = s.triangleMeshes[shape.index];
-    TriangleData t = GetTriangle(s, m, prim);
+    TriangleRef t = GetTriangleRef(s, m, prim);
     Vec3f dir[3];   // shared by the solid angle, the cos weights and the spherical sampling
     TriangleDirections(t, ctx.p, dir);
     Float sa = SphericalTriangleArea(dir[0], dir[1], dir[2]);
@@ -269,16 +286,16 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
         }
         Float triPDF;
         // A finite solid angle means no vertex coincides with ctx.p (else dir would be NaN).
-        SampleSphericalTriangleDirs(t.p, dir, sa, ctx.p, u, b, &triPDF);
+        SampleSphericalTriangleDirs(t.p0, t.p1, t.p2, dir, sa, ctx.p, u, b, &triPDF);
         if (triPDF == 0) return false;
         pdf *= triPDF;
     }
-    ss->p = t.p[0] * b[0] + t.p[1] * b[1] + t.p[2] * b[2];
-    TriangleNormalUV(s, m, t, b, &ss->n, &ss->uv);
+    ss->p = t.p0 * b[0] + t.p1 * b[1] + t.p2 * b[2];
+    TriangleNormalUV(s, m, t, b, &ss->n, wantUV ? &ss->uv : nullptr);
     Vec3f d = ss->p - ctx.p;
     if (LengthSquared(d) == 0) return false;
     if (!spherical) {
-        Float area = 0.5f * Length(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+        Float area = 0.5f * Length(Cross(t.p1 - t.p0, t.p2 - t.p0));
         pdf = AreaToSolidAnglePDF(1 / area, ctx.p, ss->p, ss->n, Normalize(d));
     }
     ss->pdf = pdf;
@@ -288,12 +305,12 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
 LU_INLINE Float TrianglePDF(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
                             const Vec3f &wi, const Vec3f &pLight, const Vec3f &nLight) {
     const TriangleMesh &m = s.triangleMeshes[shape.index];
-    TriangleData t = GetTriangle(s, m, prim);
+    TriangleRef t = GetTriangleRef(s, m, prim);
     Vec3f dir[3];
     TriangleDirections(t, ctx.p, dir);
     Float sa = SphericalTriangleArea(dir[0], dir[1], dir[2]);
     if (sa < MinSphericalSampleArea || sa > MaxSphericalSampleArea) {
-        Float area = 0.5f * Length(Cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+        Float area = 0.5f * Length(Cross(t.p1 - t.p0, t.p2 - t.p0));
         return AreaToSolidAnglePDF(1 / area, ctx.p, pLight, nLight, wi);
     }
     Float pdf = 1 / sa;
@@ -403,7 +420,7 @@ LU_INLINE bool SampleDisk(const Disk &dk, const LightSampleContext &ctx, Vec2f u
 LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
                            Vec2f u, ShapeSample *ss, bool wantUV = true) {
     switch (shape.kind) {
-    case ShapeKind::Triangles: return SampleTriangle(s, shape, prim, ctx, u, ss);
+    case ShapeKind::Triangles: return SampleTriangle(s, shape, prim, ctx, u, ss, wantUV);
     case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss, wantUV);
     case ShapeKind::Disk: return SampleDisk(s.disks[shape.index], ctx, u, ss);
     }
