@@ -34,20 +34,7 @@ class RNG {
     LU_HD uint32_t UniformBounded(uint32_t bound);
 
     // Skips delta draws (negative delta goes back) in O(log delta) (Brown 1994).
-    LU_HD void Advance(int64_t idelta) {
-        uint64_t curMult = Mult, curPlus = inc, accMult = 1u, accPlus = 0u;
-        uint64_t delta = uint64_t(idelta);
-        while (delta > 0) {
-            if (delta & 1) {
-                accMult *= curMult;
-                accPlus = accPlus * curMult + curPlus;
-            }
-            curPlus = (curMult + 1) * curPlus;
-            curMult *= curMult;
-            delta /= 2;
-        }
-        state = accMult * state + accPlus;
-    }
+    LU_HD void Advance(int64_t idelta);
 
     // Number of draws from `other` to *this (same stream required).
     LU_HD int64_t operator-(const RNG &other) const {
@@ -70,6 +57,54 @@ class RNG {
   private:
     uint64_t state, inc;
 };
+
+#if !defined(__CUDA_ARCH__)
+namespace detail {
+// The LCG step s -> Mult s + inc applied 2^k times is s -> mult[k] s + inc * plus[k]
+// (Brown 1994's squarings, which do not depend on the state or the stream): tabulated once, so
+// Advance only visits the set bits of delta, with no chain of squarings.
+struct PCGJumpTable {
+    uint64_t mult[64], plus[64];
+};
+constexpr PCGJumpTable MakePCGJumpTable() {
+    PCGJumpTable t{};
+    uint64_t m = 0x5851f42d4c957f2dull, c = 1;
+    for (int k = 0; k < 64; ++k) {
+        t.mult[k] = m;
+        t.plus[k] = c;
+        c = (m + 1) * c;
+        m *= m;
+    }
+    return t;
+}
+inline constexpr PCGJumpTable kPCGJump = MakePCGJumpTable();
+}  // namespace detail
+#endif
+
+LU_INLINE void RNG::Advance(int64_t idelta) {
+    uint64_t accMult = 1u, accPlus = 0u;
+    uint64_t delta = uint64_t(idelta);
+#if !defined(__CUDA_ARCH__) && defined(__GNUC__)
+    while (delta > 0) {
+        int k = __builtin_ctzll(delta);
+        delta &= delta - 1;
+        accMult *= detail::kPCGJump.mult[k];
+        accPlus = accPlus * detail::kPCGJump.mult[k] + inc * detail::kPCGJump.plus[k];
+    }
+#else
+    uint64_t curMult = Mult, curPlus = inc;
+    while (delta > 0) {
+        if (delta & 1) {
+            accMult *= curMult;
+            accPlus = accPlus * curMult + curPlus;
+        }
+        curPlus = (curMult + 1) * curPlus;
+        curMult *= curMult;
+        delta /= 2;
+    }
+#endif
+    state = accMult * state + accPlus;
+}
 
 template <>
 LU_INLINE uint32_t RNG::Uniform<uint32_t>() {
