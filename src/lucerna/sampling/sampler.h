@@ -242,6 +242,10 @@ struct Sampler {
             uint32_t hash = uint32_t(MixBits(uint64_t(int64_t(dimension ^ passSeed))));
             return SobolSample(index, 0, Randomizer(), hash);
         }
+        if (kind == SamplerKind::Independent) {
+            ++dimension;
+            return rng.Uniform<float>();
+        }
         return Get1DOther();
     }
 
@@ -254,6 +258,12 @@ struct Sampler {
             RandomizeStrategy r = Randomizer();
             if (r == RandomizeStrategy::FastOwen) return SobolSample2DFastOwen(index, uint32_t(bits), uint32_t(bits >> 32));
             return {SobolSample(index, 0, r, uint32_t(bits)), SobolSample(index, 1, r, uint32_t(bits >> 32))};
+        }
+        if (kind == SamplerKind::Independent) {
+            dimension += 2;
+            Float u0 = rng.Uniform<float>();
+            Float u1 = rng.Uniform<float>();
+            return {u0, u1};
         }
         return Get2DOther();
     }
