@@ -36,6 +36,47 @@ class EmbreeScene {
     std::vector<EmbreeUserData> userData_;  // stable: reserved before use
 };
 
+// The queries are inline: the integrator calls them several times per sample.
+inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.o.x; rh.ray.org_y = ray.o.y; rh.ray.org_z = ray.o.z;
+    rh.ray.dir_x = ray.d.x; rh.ray.dir_y = ray.d.y; rh.ray.dir_z = ray.d.z;
+    rh.ray.tnear = 0;
+    rh.ray.tfar = ray.tMax;
+    rh.ray.time = 0;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->t = rh.ray.tfar;
+    hit->shape = rh.hit.geomID;
+    hit->primitive = rh.hit.primID;
+    hit->b1 = rh.hit.u;
+    hit->b2 = rh.hit.v;
+    return true;
+}
+
+inline bool EmbreeScene::Occluded(const Ray &ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
+    r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
+    r.tnear = 0;
+    r.tfar = ray.tMax;
+    r.time = 0;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0;
+}
+
 // The Tracer concept of integrators/path.h over an EmbreeScene.
 struct EmbreeTracer {
     const EmbreeScene *scene;
