@@ -3,6 +3,10 @@
 # with fixed spp, maxdepth and 2 threads, and prints samples/s and rays/s next to pbrt-v4's own
 # throughput on the same machine class (computed from ../shared/refs/NAME.txt: W*H*spp / wall s,
 # only where that reference was rendered with pbrt-v4's `path` integrator).
+# Two rows per scene: "scene" is the scene's own file (scene-v4*.pbrt: its sampler, e.g. "sobol",
+# which Lucerna renders with ZSobol); "pbrt-ref" is the exact file pbrt-v4 rendered for the
+# reference and its timing (refs/NAME.txt "scene variant": Film/Sampler/Integrator replaced, e.g.
+# Sampler "independent"), the like-for-like comparison. VARIANTS="scene" or "pbrt-ref" picks one.
 # Usage: bench/render_bench.sh [SPP] [THREADS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,11 +16,19 @@ THREADS=${2:-2}
 BIN=${LUCERNA_BIN:-build/lucerna}
 [ -x "$BIN" ] || { echo "build first (scripts/build.sh)"; exit 1; }
 out=$(mktemp -d)
-printf "%-22s %-9s %5s %9s %8s %12s %12s %14s %8s\n" scene res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio
+VARIANTS=${VARIANTS:-scene pbrt-ref}
+printf "%-22s %-9s %-9s %5s %9s %8s %12s %12s %14s %8s\n" scene variant res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio
 for name in cornell-box water-caustic veach-mis volumetric-caustic bs_c; do
+ for variant in $VARIANTS; do
   txt="$SHARED/refs/$name.txt"
   scene=$(sed -n 's/^scene variant: shared\/\(.*\)\/ref-\(.*\)\.pbrt.*/\1/p' "$txt")
-  file=$(ls "$SHARED/$scene"/scene-v4-nomedium.pbrt "$SHARED/$scene"/scene-v4.pbrt "$SHARED/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1 || true)
+  if [ "$variant" = pbrt-ref ]; then
+    file=$(sed -n 's/^scene variant: shared\/\([^ ]*\.pbrt\).*/\1/p' "$txt")
+    file="$SHARED/$file"
+    [ -f "$file" ] || continue
+  else
+    file=$(ls "$SHARED/$scene"/scene-v4-nomedium.pbrt "$SHARED/$scene"/scene-v4.pbrt "$SHARED/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1 || true)
+  fi
   res=$(sed -n 's/^resolution: \([0-9]*x[0-9]*\).*/\1/p' "$txt")
   maxdepth=$(sed -n 's/.*"integer maxdepth" \[ \([0-9]*\) \].*/\1/p' "$txt")
   pbrtspp=$(sed -n 's/.*spp: \([0-9]*\).*/\1/p' "$txt")
@@ -24,14 +36,15 @@ for name in cornell-box water-caustic veach-mis volumetric-caustic bs_c; do
   integ=$(sed -n 's/^integrator: "\([a-z]*\)".*/\1/p' "$txt")
   "$BIN" render "$file" --res "$res" --spp "$SPP" --maxdepth "$maxdepth" --threads "$THREADS" --seed 1 -q \
         -o "$out/$name.exr" --stats-json "$out/$name.json" >/dev/null
-  python3 - "$out/$name.json" "$name" "$res" "$SPP" "$maxdepth" "$pbrtspp" "$wall" "$integ" <<'PY'
+  python3 - "$out/$name.json" "$name" "$res" "$SPP" "$maxdepth" "$pbrtspp" "$wall" "$integ" "$variant" <<'PY'
 import json, sys
-j = json.load(open(sys.argv[1])); name, res, spp, md, pspp, wall, integ = sys.argv[2:]
+j = json.load(open(sys.argv[1])); name, res, spp, md, pspp, wall, integ, variant = sys.argv[2:]
 w, h = map(int, res.split('x'))
 pbrt = w * h * int(pspp) / float(wall) if integ == 'path' else None
 ratio = f"{j['samples_per_second'] / pbrt:.2f}x" if pbrt else f"({integ})"
-print(f"{name:22s} {res:9s} {spp:>5s} {md:>9s} {j['seconds']:8.2f} {j['samples_per_second']:12.4g} {j['rays_per_second']:12.4g} "
+print(f"{name:22s} {variant:9s} {res:9s} {spp:>5s} {md:>9s} {j['seconds']:8.2f} {j['samples_per_second']:12.4g} {j['rays_per_second']:12.4g} "
       f"{(f'{pbrt:.4g}' if pbrt else 'n/a'):>14s} {ratio:>8s}")
 PY
+ done
 done
 rm -rf "$out"
