@@ -104,12 +104,21 @@ struct SampledWavelengths {
     // Stratified: the first wavelength from u, the others offset by 1/N in the primary sample.
     LU_HD static SampledWavelengths SampleVisible(Float u) {
         SampledWavelengths w;
+        Float l[NSpectrumSamples], p[NSpectrumSamples];
         for (int i = 0; i < NSpectrumSamples; ++i) {
             Float up = u + Float(i) / NSpectrumSamples;
             if (up > 1) up -= 1;
-            w.lambda[i] = SampleVisibleWavelength(up);
-            w.pdf[i] = VisibleWavelengthsPDF(w.lambda[i]);
+            l[i] = SampleVisibleWavelength(up);
+            p[i] = VisibleWavelengthsPDF(l[i]);
         }
+#if defined(LU_SPECTRUM_SSE)
+        // One 16-byte store per array: the caller copies w with 16-byte loads, which cannot be
+        // forwarded from four 4-byte stores.
+        _mm_storeu_ps(w.lambda, _mm_setr_ps(l[0], l[1], l[2], l[3]));
+        _mm_storeu_ps(w.pdf, _mm_setr_ps(p[0], p[1], p[2], p[3]));
+#else
+        for (int i = 0; i < NSpectrumSamples; ++i) { w.lambda[i] = l[i]; w.pdf[i] = p[i]; }
+#endif
         return w;
     }
     LU_HD SampledSpectrum PDF() const { SampledSpectrum r; for (int i = 0; i < NSpectrumSamples; ++i) r.v[i] = pdf[i]; return r; }
