@@ -61,6 +61,10 @@ LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
 // area = SphericalTriangleArea(dir) (Van Oosterom & Strackee, accurate for small triangles).
 // Arvo's construction needs only cos and sin of the interior angle alpha at a, which come from
 // the normals of the planes (a, b) and (a, c) without an arcsine, and of A' = u0 * area.
+// The plane normals need no normalization (cos and sin are renormalized together), and
+// |n_ab x n_ca| = |det(a, b, c)| |a|. sin and cos of A' come from the half angle (one float
+// sincos): 1 - cos A' = 2 sin^2(A'/2) keeps k1 = cos(phi) - cos(alpha) free of cancellation
+// for small A'; the rest runs in double as before.
 LU_INLINE void SampleSphericalTriangleDirs(const Vec3f &v0, const Vec3f &v1, const Vec3f &v2, const Vec3f dir[3],
                                            Float area, const Vec3f &p, Vec2f u, Float b[3], Float *pdf) {
     *pdf = 0;
@@ -68,21 +72,23 @@ LU_INLINE void SampleSphericalTriangleDirs(const Vec3f &v0, const Vec3f &v1, con
     const Vec3f &a = dir[0], &bb = dir[1], &c = dir[2];
     Vec3f nab = Cross(a, bb), nca = Cross(c, a);
     if (LengthSquared(nab) == 0 || LengthSquared(nca) == 0 || !(area > 0)) return;
-    nab = Normalize(nab); nca = Normalize(nca);
     *pdf = 1 / area;
     // alpha = angle(nab, -nca).
-    double cosA = -double(Dot(nab, nca)), sinA = double(Length(Cross(nab, nca)));
+    double cosA = -double(Dot(nab, nca)), sinA = std::abs(double(Dot(nab, c)));
     double norm = std::sqrt(cosA * cosA + sinA * sinA);
     if (!(norm > 0)) return;
-    cosA /= norm;
-    sinA /= norm;
+    double invNorm = 1 / norm;
+    cosA *= invNorm;
+    sinA *= invNorm;
     // Sub-triangle area A' = u0 * area determines the point c' on the arc from a to c.
     // phi = A' - alpha (pbrt-v4's A' + pi - alpha, with the pi folded into the signs).
-    double ap = double(u.x) * double(area);
-    double sinAp = std::sin(ap), cosAp = std::cos(ap);
+    Float halfAp = 0.5f * (u.x * area);
+    Float sh = std::sin(halfAp), ch = std::cos(halfAp);   // one sincosf
+    double sinAp = 2 * double(sh) * double(ch), oneMinusCosAp = 2 * double(sh) * double(sh);
+    double cosAp = 1 - oneMinusCosAp;
     double sinPhi = sinAp * cosA - cosAp * sinA;
     double cosPhi = cosAp * cosA + sinAp * sinA;
-    double k1 = cosPhi - cosA;
+    double k1 = sinAp * sinA - oneMinusCosAp * cosA;   // cos(phi) - cos(alpha)
     double k2 = sinPhi + sinA * double(Dot(a, bb));
     double cosBp = ((k2 * cosPhi - k1 * sinPhi) * cosA - k2) / ((k2 * sinPhi + k1 * cosPhi) * sinA);
     if (cosBp != cosBp) cosBp = 1;  // triangle covering (nearly) a hemisphere
@@ -93,7 +99,8 @@ LU_INLINE void SampleSphericalTriangleDirs(const Vec3f &v0, const Vec3f &v1, con
     Float cosTheta = 1 - u.y * (1 - Dot(cp, bb));
     Float sinTheta = SafeSqrt(1 - cosTheta * cosTheta);
     Vec3f gs = GramSchmidt(cp, bb);
-    Vec3f w = bb * cosTheta + (LengthSquared(gs) > 0 ? Normalize(gs) : Vec3f()) * sinTheta;
+    Float gs2 = LengthSquared(gs);
+    Vec3f w = bb * cosTheta + (gs2 > 0 ? gs * (sinTheta / std::sqrt(gs2)) : Vec3f());
     // Barycentrics of the ray (p, w) against the planar triangle (Moller-Trumbore).
     Vec3f e1 = v1 - v0, e2 = v2 - v0;
     Vec3f s1 = Cross(w, e2);
