@@ -129,8 +129,11 @@ int RunConverge(const ConvergeArgs &a) {
     std::map<std::string, std::vector<std::vector<Snapshot>>> snaps;   // integrator -> run -> snapshots
     std::string deviceName = "cpu";
     int width = 0, height = 0;
-    for (const std::string &integ : integrators) {
-        for (int run = 0; run < a.runs; ++run) {
+    for (const std::string &integ : integrators) snaps[integ];
+    // Run-major order (run 0 of every integrator, then run 1, ...): on a shared machine, load
+    // that drifts during the benchmark then affects every integrator alike at equal time.
+    for (int run = 0; run < a.runs; ++run) {
+        for (const std::string &integ : integrators) {
             RenderRequest req;
             req.sceneFile = a.scene;
             req.integrator = integ;
@@ -195,11 +198,12 @@ int RunConverge(const ConvergeArgs &a) {
         sppBudget = std::min(sppBudget, double(last.spp));
     }
     std::ofstream fin(a.outDir + "/final.csv");
-    fin << "integrator,budget,runs,spp,seconds,mse,rmse,relmse,mape,bias2,variance,relbias2,relvariance\n";
+    fin << "integrator,budget,runs,spp,seconds,mse,rmse,relmse,mape,bias2,variance,relbias2,relvariance,mse_median,mse_min,mse_max\n";
     for (const auto &integ : integrators) {
         for (const char *budget : {"time", "spp"}) {
             bool bySpp = std::string(budget) == "spp";
             std::vector<Image> images;
+            std::vector<double> runMSE;
             double spp = 0, secs = 0, mse = 0, rmse = 0, relmse = 0, mape = 0;
             for (int run = 0; run < a.runs; ++run) {
                 const auto &rs = snaps[integ][run];
@@ -208,6 +212,7 @@ int RunConverge(const ConvergeArgs &a) {
                                         : PickSnapshot(rs, bySpp, bySpp ? sppBudget : timeBudget);
                 if (run == 0) WriteBudgetImages(a.outDir, integ, budget, s, uint32_t(a.seed));
                 ErrorStats e = errors(s.image);
+                runMSE.push_back(e.mse);
                 spp += s.spp; secs += s.seconds; mse += e.mse; rmse += e.rmse; relmse += e.relMSE; mape += e.mape;
                 images.push_back(s.image);
                 if (masked) applyMask(images.back());
@@ -221,6 +226,12 @@ int RunConverge(const ConvergeArgs &a) {
             } else {
                 fin << ",,,,";
             }
+            // Per-run spread of the MSE: heavy-tailed estimators (rare caustic hits) have a mean
+            // far above their typical run; the mean estimates the expected MSE, the median the typical one.
+            std::sort(runMSE.begin(), runMSE.end());
+            size_t m = runMSE.size();
+            double median = m % 2 ? runMSE[m / 2] : 0.5 * (runMSE[m / 2 - 1] + runMSE[m / 2]);
+            fin << ',' << Num(median) << ',' << Num(runMSE.front()) << ',' << Num(runMSE.back());
             fin << '\n';
         }
     }

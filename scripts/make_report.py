@@ -418,8 +418,8 @@ def benchmarks(md_path, assets, dirs):
     md_dir = os.path.dirname(os.path.abspath(md_path))
     os.makedirs(assets, exist_ok=True)
     lines = [BEGIN, "",
-             "| scene | resolution | budget | integrator | runs | spp | relMSE | MSE | bias² share | relMSE vs path |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "| scene | resolution | budget | integrator | runs | spp | relMSE | MSE | MSE median (min–max) | bias² share | RMSE ÷ path |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     plots = []
     for d in dirs:
         info = run_info(d)
@@ -428,22 +428,25 @@ def benchmarks(md_path, assets, dirs):
         if not finals:
             log = os.path.join(d, "converge.log")
             why = "no results" + (f" (see {os.path.basename(d)}/converge.log)" if os.path.exists(log) else "")
-            lines.append(f"| {name} | | | {why} | | | | | | |")
+            lines.append(f"| {name} | | | {why} | | | | | | | |")
             continue
         budget = "time" if "time" in finals else ("spp" if "spp" in finals else "last")
         rows = finals[budget]
         res = f"{info['width']}x{info['height']}" if info.get("width") else ""
         what = {"time": f"{info.get('time', '?')} s", "spp": f"{info.get('spp', '?')} spp", "last": "last"}[budget]
-        base = rows.get("path", {}).get("relmse")
+        base = rows.get("path", {}).get("mse")
         for n in integrator_order(rows):
             r = rows[n]
             share = ""
             if r.get("bias2") is not None and r.get("mse"):
                 share = f"{100 * max(r['bias2'], 0) / r['mse']:.0f}%"
-            ratio = f"{r['relmse'] / base:.3g}" if base and r.get("relmse") is not None else ""
+            ratio = f"{math.sqrt(r['mse'] / base):.3g}" if base and r.get("mse") is not None else ""
             spp = f"{r['spp']:.0f}" if r.get("spp") is not None else ""
+            spread = ""
+            if r.get("mse_median") is not None:
+                spread = f"{fmt(r['mse_median'])} ({fmt(r.get('mse_min'))}–{fmt(r.get('mse_max'))})"
             lines.append(f"| {name} | {res} | {what} | {n} | {int(r.get('runs') or 1)} | {spp} | "
-                         f"{fmt(r.get('relmse'))} | {fmt(r.get('mse'))} | {share} | {ratio} |".replace("&ndash;", "–"))
+                         f"{fmt(r.get('relmse'))} | {fmt(r.get('mse'))} | {spread} | {share} | {ratio} |".replace("&ndash;", "–"))
         for plot in ("plot_time.png", "plot_spp.png"):
             src = os.path.join(d, plot)
             if os.path.exists(src):
@@ -452,7 +455,8 @@ def benchmarks(md_path, assets, dirs):
                 plots.append((name, plot[5:-4], os.path.relpath(dst, md_dir).replace(os.sep, "/")))
     lines.append("")
     lines.append("relMSE = mean (v−r)²/(r²+0.01) over pixels and R,G,B against the pbrt-v4 reference in /work/shared/refs; "
-                 "errors are means over runs; bias² share = bias²/MSE (docs/convergence.md).")
+                 "errors are means over runs (the mean MSE estimates the expected MSE; the median and range show the spread of "
+                 "heavy-tailed runs); RMSE ÷ path = √(MSE / MSE of path); bias² share = bias²/MSE (docs/convergence.md).")
     lines.append("")
     for name in dict.fromkeys(n for n, _, _ in plots):
         mine = {kind: rel for n, kind, rel in plots if n == name}
