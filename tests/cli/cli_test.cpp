@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "lucerna/image/image.h"
@@ -70,7 +71,20 @@ TEST(Cli, ExitCodes) {
     std::ofstream(dir + "/bad.pbrt") << "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 ]\n";
     EXPECT_EQ(RunLucerna({"render", dir + "/bad.pbrt", "-o", dir + "/bad.exr"}), 2);
     EXPECT_FALSE(std::filesystem::exists(dir + "/bad.exr"));
-    EXPECT_EQ(RunLucerna({"render", WriteScene(dir), "--device", "cuda", "-o", dir + "/c.exr"}), 2);
+    {
+        // --device cuda: exit 2 ("no CUDA GPU") without a GPU or CUDA build; on a GPU machine it
+        // renders, and must then really have run on the GPU (never a silent CPU fallback).
+        int rc = RunLucerna({"render", WriteScene(dir), "--device", "cuda", "--spp", "1", "-o", dir + "/c.exr",
+                             "--stats-json", dir + "/c.json"});
+        if (rc == 0) {
+            std::stringstream js;
+            js << std::ifstream(dir + "/c.json").rdbuf();
+            EXPECT_NE(js.str().find("\"device\": \"cuda"), std::string::npos) << js.str();
+        } else {
+            EXPECT_EQ(rc, 2);
+            EXPECT_FALSE(std::filesystem::exists(dir + "/c.exr"));
+        }
+    }
     EXPECT_EQ(RunLucerna({"render", WriteScene(dir), "--res", "0x10"}), 2);
     EXPECT_EQ(RunLucerna({"render", WriteScene(dir), "--integrator", "bdpt"}), 2);
     EXPECT_EQ(RunLucerna({"render", WriteScene(dir), "--spp", "2", "-o", dir + "/ok.exr", "--stats-json", dir + "/s.json"}), 0);
