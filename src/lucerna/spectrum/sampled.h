@@ -5,6 +5,7 @@
 #include "lucerna/util/common.h"
 
 #if (defined(__x86_64__) || defined(_M_X64)) && !defined(__CUDA_ARCH__) && defined(__GNUC__)
+#include <emmintrin.h>
 #include <xmmintrin.h>
 #define LU_SPECTRUM_SSE 1
 #endif
@@ -96,6 +97,38 @@ LU_INLINE Float SampleVisibleWavelength(Float u) {
     Float y = 0.85691062f - 1.82750197f * u;
     return 538 - 138.888889f * (0.5f * std::log((1 + y) / (1 - y)));
 }
+// The pdf of SampleVisibleWavelength(u) from its y = 0.85691062 - 1.82750197 u, without an
+// exponential: 0.0144 (lambda - 538) = -2 atanh(y) (0.0144 * 138.888889 = 2), and
+// 1 / cosh^2(atanh y) = (1 - y)(1 + y). Equal to VisibleWavelengthsPDF(lambda) up to float
+// rounding; 0 where the rounded lambda falls outside [360, 830], as there.
+LU_INLINE Float VisibleWavelengthsPDFFromY(Float onePlusY, Float oneMinusY, Float lambda) {
+    if (lambda < 360 || lambda > 830) return 0;
+    return 0.0039398042f * (oneMinusY * onePlusY);
+}
+
+#if defined(LU_SPECTRUM_SSE)
+// Natural logarithm of four positive normal floats (Cephes logf: mantissa in [sqrt(1/2),
+// sqrt(2)), degree-9 polynomial; within about 1 ulp of logf).
+inline __m128 Log4(__m128 x) {
+    __m128i xi = _mm_castps_si128(x);
+    __m128i e = _mm_sub_epi32(_mm_srli_epi32(xi, 23), _mm_set1_epi32(127));
+    __m128 m = _mm_castsi128_ps(_mm_or_si128(_mm_and_si128(xi, _mm_set1_epi32(0x007fffff)), _mm_set1_epi32(0x3f800000)));
+    __m128 big = _mm_cmpgt_ps(m, _mm_set1_ps(1.41421356237f));   // m in [1, 2): halve above sqrt(2)
+    m = _mm_or_ps(_mm_and_ps(big, _mm_mul_ps(m, _mm_set1_ps(0.5f))), _mm_andnot_ps(big, m));
+    e = _mm_sub_epi32(e, _mm_castps_si128(big));   // big is -1 where halved
+    __m128 fe = _mm_cvtepi32_ps(e);
+    __m128 f = _mm_sub_ps(m, _mm_set1_ps(1));
+    __m128 z = _mm_mul_ps(f, f);
+    __m128 r = _mm_set1_ps(7.0376836292e-2f);
+    const float c[8] = {-1.1514610310e-1f, 1.1676998740e-1f, -1.2420140846e-1f, 1.4249322787e-1f,
+                        -1.6668057665e-1f, 2.0000714765e-1f, -2.4999993993e-1f, 3.3333331174e-1f};
+    for (float ci : c) r = _mm_add_ps(_mm_mul_ps(r, f), _mm_set1_ps(ci));
+    r = _mm_mul_ps(_mm_mul_ps(r, f), z);
+    r = _mm_add_ps(r, _mm_mul_ps(fe, _mm_set1_ps(-2.12194440e-4f)));
+    r = _mm_sub_ps(r, _mm_mul_ps(z, _mm_set1_ps(0.5f)));
+    return _mm_add_ps(_mm_add_ps(f, r), _mm_mul_ps(fe, _mm_set1_ps(0.693359375f)));
+}
+#endif
 
 struct SampledWavelengths {
     Float lambda[NSpectrumSamples];
@@ -104,20 +137,30 @@ struct SampledWavelengths {
     // Stratified: the first wavelength from u, the others offset by 1/N in the primary sample.
     LU_HD static SampledWavelengths SampleVisible(Float u) {
         SampledWavelengths w;
-        Float l[NSpectrumSamples], p[NSpectrumSamples];
+#if defined(LU_SPECTRUM_SSE)
+        // The four wavelengths at once (same arithmetic as below, with Log4 for std::log), and
+        // one 16-byte store per array: the caller copies w with 16-byte loads, which cannot be
+        // forwarded from four 4-byte stores.
+        __m128 up = _mm_add_ps(_mm_set1_ps(u), _mm_setr_ps(0, 0.25f, 0.5f, 0.75f));
+        __m128 wrap = _mm_cmpgt_ps(up, _mm_set1_ps(1));
+        up = _mm_or_ps(_mm_and_ps(wrap, _mm_sub_ps(up, _mm_set1_ps(1))), _mm_andnot_ps(wrap, up));
+        __m128 y = _mm_sub_ps(_mm_set1_ps(0.85691062f), _mm_mul_ps(_mm_set1_ps(1.82750197f), up));
+        __m128 onePlusY = _mm_add_ps(_mm_set1_ps(1), y), oneMinusY = _mm_sub_ps(_mm_set1_ps(1), y);
+        __m128 l = _mm_sub_ps(_mm_set1_ps(538), _mm_mul_ps(_mm_set1_ps(138.888889f),
+                                                           _mm_mul_ps(_mm_set1_ps(0.5f), Log4(_mm_div_ps(onePlusY, oneMinusY)))));
+        __m128 inside = _mm_and_ps(_mm_cmpge_ps(l, _mm_set1_ps(360)), _mm_cmple_ps(l, _mm_set1_ps(830)));
+        __m128 p = _mm_and_ps(inside, _mm_mul_ps(_mm_set1_ps(0.0039398042f), _mm_mul_ps(oneMinusY, onePlusY)));
+        _mm_storeu_ps(w.lambda, l);
+        _mm_storeu_ps(w.pdf, p);
+#else
         for (int i = 0; i < NSpectrumSamples; ++i) {
             Float up = u + Float(i) / NSpectrumSamples;
             if (up > 1) up -= 1;
-            l[i] = SampleVisibleWavelength(up);
-            p[i] = VisibleWavelengthsPDF(l[i]);
+            Float y = 0.85691062f - 1.82750197f * up;   // as SampleVisibleWavelength
+            Float onePlusY = 1 + y, oneMinusY = 1 - y;
+            w.lambda[i] = 538 - 138.888889f * (0.5f * std::log(onePlusY / oneMinusY));
+            w.pdf[i] = VisibleWavelengthsPDFFromY(onePlusY, oneMinusY, w.lambda[i]);
         }
-#if defined(LU_SPECTRUM_SSE)
-        // One 16-byte store per array: the caller copies w with 16-byte loads, which cannot be
-        // forwarded from four 4-byte stores.
-        _mm_storeu_ps(w.lambda, _mm_setr_ps(l[0], l[1], l[2], l[3]));
-        _mm_storeu_ps(w.pdf, _mm_setr_ps(p[0], p[1], p[2], p[3]));
-#else
-        for (int i = 0; i < NSpectrumSamples; ++i) { w.lambda[i] = l[i]; w.pdf[i] = p[i]; }
 #endif
         return w;
     }
