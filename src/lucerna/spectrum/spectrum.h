@@ -70,9 +70,56 @@ LU_INLINE Float EvalSpectrum(const Spectrum &s, Float lambda, const SpectrumTabl
     return 0;
 }
 
+#if defined(LU_SPECTRUM_SSE)
+// SigmoidPolynomial and LookupTabulated at four wavelengths as SSE vectors: the same IEEE
+// operations in the same order, so the same values; the table lookup's index arithmetic and
+// interpolation vectorized too (only the eight loads stay scalar).
+inline __m128 SigmoidPolynomial4(const Float c[3], __m128 lambda) {
+    __m128 x = _mm_add_ps(_mm_mul_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(c[0]), lambda), _mm_set1_ps(c[1])), lambda),
+                          _mm_set1_ps(c[2]));
+    __m128 y = _mm_add_ps(_mm_set1_ps(0.5f),
+                          _mm_div_ps(x, _mm_mul_ps(_mm_set1_ps(2), _mm_sqrt_ps(_mm_add_ps(_mm_set1_ps(1), _mm_mul_ps(x, x))))));
+    __m128 absX = _mm_andnot_ps(_mm_set1_ps(-0.f), x);
+    __m128 inf = _mm_cmpeq_ps(absX, _mm_set1_ps(Infinity));
+    __m128 step = _mm_and_ps(_mm_cmpgt_ps(x, _mm_setzero_ps()), _mm_set1_ps(1));
+    return _mm_or_ps(_mm_and_ps(inf, step), _mm_andnot_ps(inf, y));
+}
+inline __m128 LookupTabulated4(const Float *t, __m128 lambda) {
+    __m128 x = _mm_sub_ps(lambda, _mm_set1_ps(LambdaMin));
+    __m128 valid = _mm_and_ps(_mm_cmpge_ps(x, _mm_setzero_ps()), _mm_cmple_ps(x, _mm_set1_ps(TabulatedSpectrumSize - 1)));
+    __m128i i = _mm_cvttps_epi32(_mm_and_ps(valid, x));   // 0 in invalid lanes (no stray loads)
+    __m128i last = _mm_set1_epi32(TabulatedSpectrumSize - 2);
+    __m128i over = _mm_cmpgt_epi32(i, last);
+    i = _mm_or_si128(_mm_and_si128(over, last), _mm_andnot_si128(over, i));
+    __m128 f = _mm_sub_ps(x, _mm_cvtepi32_ps(i));
+    alignas(16) int32_t idx[4];
+    _mm_store_si128(reinterpret_cast<__m128i *>(idx), i);
+    __m128 t0 = _mm_setr_ps(t[idx[0]], t[idx[1]], t[idx[2]], t[idx[3]]);
+    __m128 t1 = _mm_setr_ps(t[idx[0] + 1], t[idx[1] + 1], t[idx[2] + 1], t[idx[3] + 1]);
+    __m128 v = _mm_add_ps(_mm_mul_ps(_mm_sub_ps(_mm_set1_ps(1), f), t0), _mm_mul_ps(f, t1));
+    return _mm_and_ps(valid, v);
+}
+#endif
+
 // EvalSpectrum at every wavelength, with the kind dispatched once (same values).
 LU_INLINE SampledSpectrum SampleSpectrum(const Spectrum &s, const SampledWavelengths &w, const SpectrumTables &tab) {
     SampledSpectrum r;
+#if defined(LU_SPECTRUM_SSE)
+    switch (s.kind) {
+    case SpectrumKind::Constant: r.v = _mm_set1_ps(s.scale); return r;
+    case SpectrumKind::RGBAlbedo: r.v = SigmoidPolynomial4(s.c, _mm_loadu_ps(w.lambda)); return r;
+    case SpectrumKind::RGBUnbounded:
+        r.v = _mm_mul_ps(_mm_set1_ps(s.scale), SigmoidPolynomial4(s.c, _mm_loadu_ps(w.lambda)));
+        return r;
+    case SpectrumKind::RGBIlluminant: {
+        __m128 l = _mm_loadu_ps(w.lambda);
+        __m128 v = _mm_mul_ps(_mm_set1_ps(s.scale), SigmoidPolynomial4(s.c, l));
+        r.v = _mm_mul_ps(v, LookupTabulated4(tab.data + size_t(s.table) * TabulatedSpectrumSize, l));
+        return r;
+    }
+    default: break;
+    }
+#endif
     switch (s.kind) {
     case SpectrumKind::Constant:
         for (int i = 0; i < NSpectrumSamples; ++i) r[i] = s.scale;
