@@ -86,6 +86,11 @@ struct BSDF {
     // BSDF value for directions in render space (both pointing away from the surface); 0 when wo
     // is exactly in the tangent plane. Dirac lobes evaluate to 0.
     LU_HD SampledSpectrum f(Vec3f woRender, Vec3f wiRender, TransportMode mode = TransportMode::Radiance) const {
+        if (kind == BxDFKind::Diffuse) {   // reads only the local z components: two dots, not six
+            Float woz = Dot(woRender, shadingFrame.z);
+            if (woz == 0) return SampledSpectrum(0);
+            return diffuse.f(Vec3f(0, 0, woz), Vec3f(0, 0, Dot(wiRender, shadingFrame.z)), mode);
+        }
         Vec3f wi = RenderToLocal(wiRender), wo = RenderToLocal(woRender);
         if (wo.z == 0) return SampledSpectrum(0);
         return fLocal(wo, wi, mode);
@@ -95,7 +100,8 @@ struct BSDF {
     // partially written). A returned sample has f nonzero, pdf > 0 and wi off the tangent plane.
     LU_HD bool Sample_f(Vec3f woRender, Float uc, Vec2f u, BSDFSample *bs, TransportMode mode = TransportMode::Radiance,
                         uint8_t sampleFlags = BxDF_SampleAll) const {
-        Vec3f wo = RenderToLocal(woRender);
+        // Diffuse sampling reads only wo.z (the side of the surface).
+        Vec3f wo = kind == BxDFKind::Diffuse ? Vec3f(0, 0, Dot(woRender, shadingFrame.z)) : RenderToLocal(woRender);
         if (wo.z == 0 || !(Flags() & sampleFlags)) return false;
         if (!Sample_fLocal(wo, uc, u, mode, sampleFlags, bs)) return false;
         if (!bs->f || !(bs->pdf > 0) || bs->wi.z == 0) return false;
@@ -106,6 +112,11 @@ struct BSDF {
     // pdfW of Sample_f choosing wiRender (0 for Dirac lobes). For layered BSDFs a stochastic estimate.
     LU_HD Float PDF(Vec3f woRender, Vec3f wiRender, TransportMode mode = TransportMode::Radiance,
                     uint8_t sampleFlags = BxDF_SampleAll) const {
+        if (kind == BxDFKind::Diffuse) {   // reads only the local z components
+            Float woz = Dot(woRender, shadingFrame.z);
+            if (woz == 0) return 0;
+            return diffuse.PDF(Vec3f(0, 0, woz), Vec3f(0, 0, Dot(wiRender, shadingFrame.z)), mode, sampleFlags);
+        }
         Vec3f wo = RenderToLocal(woRender), wi = RenderToLocal(wiRender);
         if (wo.z == 0) return 0;
         return PDFLocal(wo, wi, mode, sampleFlags);
