@@ -119,14 +119,17 @@ struct TrowbridgeReitzDistribution {
         if (std::isinf(tan2Theta)) return 0;
         Float cos4Theta = Sqr(Cos2Theta(wm));
         if (cos4Theta < 1e-16f) return 0;
-        Float e = tan2Theta * (Sqr(CosPhi(wm) / alphaX) + Sqr(SinPhi(wm) / alphaY));
+        // Isotropic: cos^2 phi + sin^2 phi = 1, without SinTheta's sqrt and the four divisions.
+        Float e = alphaX == alphaY ? tan2Theta / Sqr(alphaX)
+                                   : tan2Theta * (Sqr(CosPhi(wm) / alphaX) + Sqr(SinPhi(wm) / alphaY));
         return 1 / (Pi * alphaX * alphaY * cos4Theta * Sqr(1 + e));
     }
 
     LU_HD Float Lambda(const Vec3f &w) const {
         Float tan2Theta = Tan2Theta(w);
         if (std::isinf(tan2Theta)) return 0;
-        Float alpha2 = Sqr(CosPhi(w) * alphaX) + Sqr(SinPhi(w) * alphaY);
+        Float alpha2 = alphaX == alphaY ? Sqr(alphaX)   // isotropic, as in D
+                                        : Sqr(CosPhi(w) * alphaX) + Sqr(SinPhi(w) * alphaY);
         return (std::sqrt(1 + alpha2 * tan2Theta) - 1) / 2;
     }
     LU_HD Float G1(const Vec3f &w) const { return 1 / (1 + Lambda(w)); }
