@@ -131,11 +131,15 @@ struct ConductorBxDF {
         Vec3f wm = mfDistrib.Sample_wm(wo, u);
         Vec3f wi = Reflect(wo, wm);
         if (!SameHemisphere(wo, wi)) return false;
-        Float pdf = mfDistrib.PDF(wo, wm) / (4 * AbsDot(wo, wm));
+        // D(wm) and Lambda(wo) once for the pdf (G1(wo) D(wm) |wo.wm| / |cos_o|) and f (D(wm) G): the
+        // same expressions as mfDistrib.PDF(wo, wm) and f() with the shared terms reused.
+        Float Dwm = mfDistrib.D(wm), lambdaO = mfDistrib.Lambda(wo);
+        Float pdf = 1 / (1 + lambdaO) / AbsCosTheta(wo) * Dwm * AbsDot(wo, wm) / (4 * AbsDot(wo, wm));
         Float cosTheta_o = AbsCosTheta(wo), cosTheta_i = AbsCosTheta(wi);
         if (cosTheta_i == 0 || cosTheta_o == 0) return false;
         SampledSpectrum F = FrComplex(AbsDot(wo, wm), eta, k);
-        SampledSpectrum f = F * (mfDistrib.D(wm) * mfDistrib.G(wo, wi) / (4 * cosTheta_i * cosTheta_o));
+        Float G = 1 / (1 + lambdaO + mfDistrib.Lambda(wi));
+        SampledSpectrum f = F * (Dwm * G / (4 * cosTheta_i * cosTheta_o));
         *bs = MakeBSDFSample(f, wi, pdf, BxDF_GlossyReflection);
         return true;
     }
