@@ -27,7 +27,7 @@ uint64_t Fnv1a(const std::string &s, uint64_t h = 1469598103934665603ull) {
 
 double DefaultRegRadius(const Bounds3f &b) {
     if (b.Empty()) return 0.01;
-    return 0.02 * Length(b.Diagonal());   // chosen by bench/reg_radius.sh, see docs/regularization.md
+    return 0.04 * Length(b.Diagonal());   // chosen by bench/reg_radius.sh, see docs/regularization.md
 }
 
 int PrepareRender(const RenderRequest &req, Prepared *out) {
