@@ -125,6 +125,9 @@ int RunBackend(Prepared &prep, FilmAccumulator &film, const PassCallback &onPass
     out->integrator = prep.integratorName;
     out->device = prep.deviceName;
     out->sceneFile = prep.sceneFile;
+    out->regRadius = prep.job.regRadius;
+    out->regLambda = prep.job.regLambda;
+    out->regAngle = prep.job.regAngle;
     return ExitOk;
 }
 
@@ -162,8 +165,8 @@ std::string SummaryLine(const RenderOutcome &o) {
                   o.integrator.c_str());
     std::string line = buf;
     if (o.integrator == "regpath") {
-        std::snprintf(buf, sizeof buf, "  regularized connections %" PRIu64 " (%.2f%% of energy)", s.regConnections,
-                      s.totalEnergy > 0 ? 100.0 * s.regEnergy / s.totalEnergy : 0.0);
+        std::snprintf(buf, sizeof buf, "  r0 %.4g  regularized connections %" PRIu64 " (%.2f%% of energy)", o.regRadius,
+                      s.regConnections, s.totalEnergy > 0 ? 100.0 * s.regEnergy / s.totalEnergy : 0.0);
         line += buf;
     }
     return line;
@@ -181,7 +184,10 @@ std::string StatsJson(const RenderOutcome &o) {
       << ",\n  \"rays_per_second\": " << s.rays / sec << ",\n  \"bvh_build_seconds\": " << s.buildSeconds
       << ",\n  \"rejected_samples\": " << s.rejected << ",\n  \"first_rejected\": {\"x\": " << s.firstRejectedX
       << ", \"y\": " << s.firstRejectedY << ", \"depth\": " << s.firstRejectedDepth << "},\n  \"regularized_connections\": "
-      << s.regConnections << ",\n  \"regularized_energy_share\": " << (s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0)
+      << s.regConnections << ",\n  \"reg_radius\": " << (o.integrator == "regpath" ? o.regRadius : 0)
+      << ",\n  \"reg_lambda\": " << (o.integrator == "regpath" ? o.regLambda : 0)
+      << ",\n  \"reg_angle_degrees\": " << (o.integrator == "regpath" ? o.regAngle * 180 / 3.14159265358979323846 : 0)
+      << ",\n  \"regularized_energy_share\": " << (s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0)
       << ",\n  \"interrupted\": " << (s.interrupted ? "true" : "false") << "\n}\n";
     return j.str();
 }

@@ -31,6 +31,7 @@ struct RenderOutcome {
     uint32_t passes = 0;          // total passes in the film
     int width = 0, height = 0;
     std::string integrator, device, sceneFile;
+    double regRadius = 0, regLambda = 0, regAngle = 0;   // regpath: r0 (world units), lambda, sigma0 (radians)
 };
 
 // Loads and validates; prints diagnostics; returns an exit code (0 ok, 2 bad input).

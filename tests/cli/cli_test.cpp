@@ -65,6 +65,26 @@ bool SameImage(const Image &a, const Image &b) {
 
 }  // namespace
 
+// regpath reports the radius it used: the default 0.04 x bounding-box diagonal (docs/regularization.md;
+// WriteScene's bounds are [-3,3] x [-0.6,2] x [-3,3]), or --reg-radius.
+TEST(Cli, RegpathReportsItsRadius) {
+    std::string dir = TempDir("cli_reg_radius");
+    auto radius = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {"render", WriteScene(dir, 8, 1), "--integrator", "regpath", "-o", dir + "/r.exr",
+                                         "--stats-json", dir + "/r.json"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        EXPECT_EQ(RunLucerna(args), 0);
+        std::stringstream js;
+        js << std::ifstream(dir + "/r.json").rdbuf();
+        std::string t = js.str();
+        size_t k = t.find("\"reg_radius\": ");
+        EXPECT_NE(k, std::string::npos) << t;
+        return k == std::string::npos ? -1.0 : std::stod(t.substr(k + 14));
+    };
+    EXPECT_NEAR(radius({}), 0.04 * std::sqrt(36.0 + 2.6 * 2.6 + 36.0), 1e-4);
+    EXPECT_NEAR(radius({"--reg-radius", "0.5"}), 0.5, 1e-6);
+}
+
 TEST(Cli, ExitCodes) {
     std::string dir = TempDir("cli_exit");
     EXPECT_EQ(RunLucerna({"render", dir + "/missing.pbrt"}), 2);
