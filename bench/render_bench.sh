@@ -7,6 +7,9 @@
 # which Lucerna renders with ZSobol); "pbrt-ref" is the exact file pbrt-v4 rendered for the
 # reference and its timing (refs/NAME.txt "scene variant": Film/Sampler/Integrator replaced, e.g.
 # Sampler "independent"), the like-for-like comparison. VARIANTS="scene" or "pbrt-ref" picks one.
+# REPEAT=N renders each row N times and prints the median samples/s (ratio on the median) with the
+# min-max range: this VM's speed drifts by +-25% between minutes, so one run proves little.
+# SCENES="cornell-box veach-mis" selects scenes.
 # Usage: bench/render_bench.sh [SPP] [THREADS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,8 +20,10 @@ BIN=${LUCERNA_BIN:-build/lucerna}
 [ -x "$BIN" ] || { echo "build first (scripts/build.sh)"; exit 1; }
 out=$(mktemp -d)
 VARIANTS=${VARIANTS:-scene pbrt-ref}
-printf "%-22s %-9s %-9s %5s %9s %8s %12s %12s %14s %8s\n" scene variant res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio
-for name in cornell-box water-caustic veach-mis volumetric-caustic bs_c; do
+REPEAT=${REPEAT:-1}
+SCENES=${SCENES:-cornell-box water-caustic veach-mis volumetric-caustic bs_c}
+printf "%-22s %-9s %-9s %5s %9s %8s %12s %12s %14s %8s %s\n" scene variant res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio "(min-max over REPEAT runs)"
+for name in $SCENES; do
  for variant in $VARIANTS; do
   txt="$SHARED/refs/$name.txt"
   scene=$(sed -n 's/^scene variant: shared\/\(.*\)\/ref-\(.*\)\.pbrt.*/\1/p' "$txt")
@@ -34,16 +39,28 @@ for name in cornell-box water-caustic veach-mis volumetric-caustic bs_c; do
   pbrtspp=$(sed -n 's/.*spp: \([0-9]*\).*/\1/p' "$txt")
   wall=$(sed -n 's/.*wall seconds: \([0-9.]*\).*/\1/p' "$txt")
   integ=$(sed -n 's/^integrator: "\([a-z]*\)".*/\1/p' "$txt")
-  "$BIN" render "$file" --res "$res" --spp "$SPP" --maxdepth "$maxdepth" --threads "$THREADS" --seed 1 -q \
-        -o "$out/$name.exr" --stats-json "$out/$name.json" >/dev/null
-  python3 - "$out/$name.json" "$name" "$res" "$SPP" "$maxdepth" "$pbrtspp" "$wall" "$integ" "$variant" <<'PY'
-import json, sys
-j = json.load(open(sys.argv[1])); name, res, spp, md, pspp, wall, integ, variant = sys.argv[2:]
+  jsons=()
+  for rep in $(seq "$REPEAT"); do
+    "$BIN" render "$file" --res "$res" --spp "$SPP" --maxdepth "$maxdepth" --threads "$THREADS" --seed "$rep" -q \
+          -o "$out/$name.exr" --stats-json "$out/$name.$rep.json" >/dev/null
+    jsons+=("$out/$name.$rep.json")
+  done
+  python3 - "$name" "$res" "$SPP" "$maxdepth" "$pbrtspp" "$wall" "$integ" "$variant" "${jsons[@]}" <<'PY'
+import json, statistics, sys
+name, res, spp, md, pspp, wall, integ, variant = sys.argv[1:9]
+js = [json.load(open(f)) for f in sys.argv[9:]]
 w, h = map(int, res.split('x'))
 pbrt = w * h * int(pspp) / float(wall) if integ == 'path' else None
-ratio = f"{j['samples_per_second'] / pbrt:.2f}x" if pbrt else f"({integ})"
-print(f"{name:22s} {variant:9s} {res:9s} {spp:>5s} {md:>9s} {j['seconds']:8.2f} {j['samples_per_second']:12.4g} {j['rays_per_second']:12.4g} "
-      f"{(f'{pbrt:.4g}' if pbrt else 'n/a'):>14s} {ratio:>8s}")
+sps = [j['samples_per_second'] for j in js]
+med = statistics.median(sps)
+rays = statistics.median([j['rays_per_second'] for j in js])
+secs = statistics.median([j['seconds'] for j in js])
+ratio = f"{med / pbrt:.2f}x" if pbrt else f"({integ})"
+spread = ""
+if len(js) > 1:
+    spread = f"({min(sps):.4g}-{max(sps):.4g}" + (f", {min(sps) / pbrt:.2f}x-{max(sps) / pbrt:.2f}x)" if pbrt else ")")
+print(f"{name:22s} {variant:9s} {res:9s} {spp:>5s} {md:>9s} {secs:8.2f} {med:12.4g} {rays:12.4g} "
+      f"{(f'{pbrt:.4g}' if pbrt else 'n/a'):>14s} {ratio:>8s} {spread}")
 PY
  done
 done
