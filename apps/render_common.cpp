@@ -186,7 +186,7 @@ std::string StatsJson(const RenderOutcome &o) {
       << ", \"y\": " << s.firstRejectedY << ", \"depth\": " << s.firstRejectedDepth << "},\n  \"regularized_connections\": "
       << s.regConnections << ",\n  \"reg_radius\": " << (o.integrator == "regpath" ? o.regRadius : 0)
       << ",\n  \"reg_lambda\": " << (o.integrator == "regpath" ? o.regLambda : 0)
-      << ",\n  \"reg_angle_degrees\": " << (o.integrator == "regpath" ? o.regAngle * 180 / 3.14159265358979323846 : 0)
+      << ",\n  \"reg_angle_degrees\": " << (o.integrator == "regpath" ? Degrees(Float(o.regAngle)) : 0)
       << ",\n  \"regularized_energy_share\": " << (s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0)
       << ",\n  \"interrupted\": " << (s.interrupted ? "true" : "false") << "\n}\n";
     return j.str();

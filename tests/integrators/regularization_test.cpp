@@ -11,6 +11,8 @@
 #include "integrators/render_helpers.h"
 #include "lucerna/film/camera.h"
 #include "lucerna/integrators/regularization.h"
+#include "lucerna/lights/lights.h"
+#include "lucerna/sampling/rng.h"
 #include "lucerna/sampling/warp.h"
 
 namespace lu::test {
@@ -252,6 +254,54 @@ TEST(Regularization, PointLightSeenThroughGlassHasTheEnergyOfASmallAreaLight) {
     ASSERT_GT(b.mean, 100.0);
     // Noise of both plus 3% for the blur (r_N >= 0.12 here) at the glint's edge.
     EXPECT_LT(std::abs(a.mean - b.mean), 4 * std::sqrt(a.se * a.se + b.se * b.se) + 0.03 * b.mean);
+}
+
+// The light-sample culling of regpath (RegularizedConeMayReach over Light::boundCenter/boundRadius)
+// is conservative: every light point SampleLi returns inside a lobe's cone is reported reachable,
+// for triangle, scaled sphere (points at the object-space radius, beyond the scaled surface), disk
+// and spot lights; and it culls most random directions, or it would be useless.
+TEST(Regularization, LightCullingIsConservativeAndEffective) {
+    auto scene = LoadSceneText("reg_cull",
+        "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+        "LightSource \"spot\" \"point3 from\" [ 1 2 0 ] \"point3 to\" [ 0 0 0 ] \"rgb I\" [ 1 1 1 ]\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\n"
+        "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 ] \"point3 P\" [ -1 2 -1  1 2 -1  0 2.5 1 ]\n"
+        "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\n"
+        "Translate -2 1 0\nScale 0.5 0.5 0.5\nShape \"sphere\" \"float radius\" [ 0.4 ]\nAttributeEnd\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ] \"bool twosided\" true\n"
+        "Translate 2 -1 1\nRotate 40 1 0 0\nShape \"disk\" \"float radius\" [ 0.3 ] \"float height\" [ 0.2 ]\nAttributeEnd\n");
+    SceneView view = scene->View();
+    ASSERT_EQ(view.lights.size, 4u);
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+    RNG rng(7);
+    int accepted = 0, culled = 0, tried = 0;
+    for (uint32_t li = 0; li < view.lights.size; ++li) {
+        const Light &light = view.lights[li];
+        ASSERT_GE(light.boundRadius, 0) << "light " << li;
+        for (int i = 0; i < 4000; ++i) {
+            LightSampleContext ctx;
+            ctx.p = Vec3f(4 * rng.UniformFloat() - 2, 4 * rng.UniformFloat() - 2, 4 * rng.UniformFloat() - 2);
+            Float r = Float(0.3) * std::pow(rng.UniformFloat(), Float(3));   // radii from 0 to 0.3
+            LightLiSample ls;
+            if (!SampleLi(light, view, ctx, Vec2f(rng.UniformFloat(), rng.UniformFloat()), lambda, &ls) || ls.pdf == 0) continue;
+            // A lobe direction inside the cone around the sampled point, near its edge.
+            Float oneMinusCos = OneMinusConeCosForDisc(ls.distance, r);
+            Vec3f jitter = SampleUniformSphere(Vec2f(rng.UniformFloat(), rng.UniformFloat()));
+            Vec3f D = Normalize(ls.wi + jitter * (std::sqrt(2 * oneMinusCos) * rng.UniformFloat()));
+            if (OneMinusCosBetween(D, ls.wi) < oneMinusCos) {
+                ++accepted;
+                EXPECT_TRUE(RegularizedConeMayReach(ctx.p, D, light.boundCenter, light.boundRadius, r))
+                    << "light " << li << " p " << ctx.p.x << "," << ctx.p.y << "," << ctx.p.z << " r " << r;
+            }
+            // A random lobe direction: usually nowhere near the light.
+            Vec3f Dr = SampleUniformSphere(Vec2f(rng.UniformFloat(), rng.UniformFloat()));
+            ++tried;
+            culled += !RegularizedConeMayReach(ctx.p, Dr, light.boundCenter, light.boundRadius, r);
+        }
+    }
+    std::printf("culling: %d in-cone samples all reachable; %d of %d random directions culled\n", accepted, culled, tried);
+    EXPECT_GT(accepted, 4000);
+    EXPECT_GT(culled, tried * 3 / 4);
 }
 
 // Selectivity: without specular surfaces, regpath is bit-identical to path for the same seed.

@@ -135,6 +135,10 @@ struct Light {
     uint32_t distribution = NoIndex;  // image infinite: index into SceneView::distributions2D
     Vec3f sceneCenter;           // distant / infinite: bounding sphere of the scene
     Float sceneRadius = 0;
+    // A sphere containing every point SampleLi can return (area, point, spot lights; filled by the
+    // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
+    Vec3f boundCenter;
+    Float boundRadius = -1;
 };
 
 // Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:

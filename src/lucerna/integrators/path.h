@@ -83,61 +83,6 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
     return f * ls.L * (PowerHeuristic(pL, pB) / pL);
 }
 
-// A sphere bounding the points SampleLi can return for `light` (false: no such bound, e.g. lights
-// at infinity). Point and spot lights: their position, radius 0.
-LU_INLINE Float TransformMaxScale(const Transform &t) {
-    return Max(Length(t.ApplyVector(Vec3f(1, 0, 0))),
-               Max(Length(t.ApplyVector(Vec3f(0, 1, 0))), Length(t.ApplyVector(Vec3f(0, 0, 1)))));
-}
-LU_INLINE bool LightBoundingSphere(const Light &light, const SceneView &scene, Vec3f *center, Float *radius) {
-    if (light.kind == LightKind::Point || light.kind == LightKind::Spot) {
-        *center = light.position;
-        *radius = 0;
-        return true;
-    }
-    if (light.kind != LightKind::DiffuseArea || light.shape == NoIndex) return false;
-    const Shape &shape = scene.shapes[light.shape];
-    if (shape.kind == ShapeKind::Triangles) {
-        TriangleRef t = GetTriangleRef(scene, scene.triangleMeshes[shape.index], light.primitive);
-        Vec3f c = (t.p0 + t.p1 + t.p2) / Float(3);
-        *center = c;
-        *radius = std::sqrt(Max(DistanceSquared(c, t.p0), Max(DistanceSquared(c, t.p1), DistanceSquared(c, t.p2))));
-        return true;
-    }
-    if (shape.kind == ShapeKind::Sphere) {
-        const Sphere &sp = scene.spheres[shape.index];
-        *center = sp.renderFromObject.ApplyPoint(Vec3f(0, 0, 0));
-        *radius = sp.radius * TransformMaxScale(sp.renderFromObject);
-        return true;
-    }
-    if (shape.kind == ShapeKind::Disk) {
-        const Disk &dk = scene.disks[shape.index];
-        *center = dk.renderFromObject.ApplyPoint(Vec3f(0, 0, dk.height));
-        *radius = dk.radius * TransformMaxScale(dk.renderFromObject);
-        return true;
-    }
-    return false;
-}
-
-// Conservative culling before SampleLi at a specular vertex p: can a point of the sphere (c, R)
-// lie inside the regularization cone around D? The cone is widest for the nearest point
-// (cos sigma = d / sqrt(d^2 + r^2) falls with d), so nothing is reachable when the angle from D to
-// c exceeds sigma(d_min) + beta, beta = the sphere's angular radius. Computed as 1 - cos of the
-// angles (no cancellation for the tiny cones of late passes), with a margin.
-LU_INLINE bool RegularizedConeMayReach(const Vec3f &p, const Vec3f &D, const Vec3f &c, Float R, Float r) {
-    Vec3f pc = c - p;
-    Float L = Length(pc);
-    R = R * Float(1.001) + Float(1e-5) * L;   // float rounding of the sampled points and of L
-    if (!(L > R)) return true;
-    Float dMin = L - R;
-    Float h = std::sqrt(dMin * dMin + r * r);
-    Float oneMinusCosS = (r * r) / (h * (h + dMin)), sinS = r / h, cosS = dMin / h;
-    Float sinB = R / L, cosB = SafeSqrt(1 - sinB * sinB), oneMinusCosB = sinB * sinB / (1 + cosB);
-    // 1 - cos(sigma + beta) = (1 - cos sigma) + cos sigma (1 - cos beta) + sin sigma sin beta.
-    Float limit = oneMinusCosS + cosS * oneMinusCosB + sinS * sinB;
-    return OneMinusCosBetween(D, pc / L) <= limit * Float(1.01) + Float(1e-7);
-}
-
 // The regularized explicit technique at a specular vertex: one light sample, tested against the
 // cone of every Dirac lobe. Returns the MIS-weighted contribution (without the path throughput).
 // A light that no lobe's cone can reach is not sampled (same random numbers consumed, same result).
@@ -153,12 +98,10 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     const Light &light = scene.lights[li];
     SpecularLobe lobes[2];
     int n = bsdf.SpecularLobes(si.wo, lobes);
-    Vec3f boundCenter;
-    Float boundRadius;
-    if (LightBoundingSphere(light, scene, &boundCenter, &boundRadius)) {
+    if (light.boundRadius >= 0) {
         bool reachable = false;
         for (int i = 0; i < n; ++i)
-            reachable |= RegularizedConeMayReach(si.p, lobes[i].wi, boundCenter, boundRadius, rp.radius);
+            reachable |= RegularizedConeMayReach(si.p, lobes[i].wi, light.boundCenter, light.boundRadius, rp.radius);
         if (!reachable) return SampledSpectrum(0);
     }
     LightLiSample ls;

@@ -55,6 +55,25 @@ LU_INLINE Float RegularizedOneMinusCos(const RegularizationParams &rp, Float d) 
     return OneMinusConeCosForDisc(d, rp.radius);
 }
 
+// Conservative culling before sampling a light at a specular vertex p: can a point of the sphere
+// (c, R) lie inside the cone around D for radius r? The cone is widest for the nearest point
+// (cos sigma = d / sqrt(d^2 + r^2) falls with d), so nothing is reachable when the angle from D to
+// c exceeds sigma(d_min) + beta, beta = the sphere's angular radius. In 1 - cos terms (no
+// cancellation for the tiny cones of late passes), with a margin for float rounding.
+LU_INLINE bool RegularizedConeMayReach(const Vec3f &p, const Vec3f &D, const Vec3f &c, Float R, Float r) {
+    Vec3f pc = c - p;
+    Float L = Length(pc);
+    R = R * Float(1.001) + Float(1e-5) * L;
+    if (!(L > R)) return true;
+    Float dMin = L - R;
+    Float h = std::sqrt(dMin * dMin + r * r);
+    Float oneMinusCosS = OneMinusConeCosForDisc(dMin, r), sinS = r / h, cosS = dMin / h;
+    Float sinB = R / L, cosB = SafeSqrt(1 - sinB * sinB), oneMinusCosB = sinB * sinB / (1 + cosB);
+    // 1 - cos(sigma + beta) = (1 - cos sigma) + cos sigma (1 - cos beta) + sin sigma sin beta.
+    Float limit = oneMinusCosS + cosS * oneMinusCosB + sinS * sinB;
+    return OneMinusCosBetween(D, pc / L) <= limit * Float(1.01) + Float(1e-7);
+}
+
 // MIS weights of the two techniques for the same path (power heuristic, beta = 2). Delta lights
 // have no implicit technique: pdfExplW = Infinity gives the regularized connection weight 1.
 LU_INLINE Float RegularizedExplicitWeight(Float pdfImplW, Float pdfExplW) {

@@ -6,6 +6,7 @@
 
 #include "lucerna/lights/equal_area.h"
 #include "lucerna/lights/light_sampler.h"
+#include "lucerna/lights/shape_sampling.h"
 #include "lucerna/scene/build_internal.h"
 
 namespace lu::build {
@@ -181,6 +182,49 @@ void BuildLights(BuildContext &ctx) {
     }
 }
 
+namespace {
+
+// Largest distance from c to the 8 corners of the object-space box [pMin, pMax] in render space.
+Float MaxCornerDistance(const Transform &t, const Vec3f &c, const Vec3f &pMin, const Vec3f &pMax) {
+    Float d2 = 0;
+    for (int i = 0; i < 8; ++i) {
+        Vec3f p((i & 1) ? pMax.x : pMin.x, (i & 2) ? pMax.y : pMin.y, (i & 4) ? pMax.z : pMin.z);
+        d2 = Max(d2, DistanceSquared(c, t.ApplyPoint(p)));
+    }
+    return std::sqrt(d2);
+}
+
+// Light::boundCenter/boundRadius: a sphere containing every point SampleLi returns. The
+// cone-sampled sphere puts its points at the object-space radius around the center (pbrt-v4
+// assumes no scale), the other branches at transformed object points: both are covered.
+void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Float *radius) {
+    *radius = -1;
+    if (l.kind == LightKind::Point || l.kind == LightKind::Spot) {
+        *center = l.position;
+        *radius = 0;
+        return;
+    }
+    if (l.kind != LightKind::DiffuseArea || l.shape == NoIndex) return;
+    const Shape &shape = s.shapes[l.shape];
+    if (shape.kind == ShapeKind::Triangles) {
+        TriangleRef t = GetTriangleRef(s, s.triangleMeshes[shape.index], l.primitive);
+        *center = (t.p0 + t.p1 + t.p2) / Float(3);
+        *radius = std::sqrt(Max(DistanceSquared(*center, t.p0), Max(DistanceSquared(*center, t.p1), DistanceSquared(*center, t.p2))));
+    } else if (shape.kind == ShapeKind::Sphere) {
+        const Sphere &sp = s.spheres[shape.index];
+        Float r = sp.radius;
+        *center = sp.renderFromObject.ApplyPoint(Vec3f(0, 0, 0));
+        *radius = Max(r, MaxCornerDistance(sp.renderFromObject, *center, Vec3f(-r, -r, -r), Vec3f(r, r, r)));
+    } else if (shape.kind == ShapeKind::Disk) {
+        const Disk &dk = s.disks[shape.index];
+        Float r = dk.radius;
+        *center = dk.renderFromObject.ApplyPoint(Vec3f(0, 0, dk.height));
+        *radius = MaxCornerDistance(dk.renderFromObject, *center, Vec3f(-r, -r, dk.height), Vec3f(r, r, dk.height));
+    }
+}
+
+}  // namespace
+
 void FinishLights(BuildContext &ctx) {
     HostScene &s = ctx.scene;
     // pbrt-v4's Bounds3::BoundingSphere of the scene bounds.
@@ -190,11 +234,14 @@ void FinishLights(BuildContext &ctx) {
         center = s.bounds.Center();
         radius = Distance(center, s.bounds.pMax);
     }
-    for (Light &l : s.lights)
+    SceneView view = s.View();
+    for (Light &l : s.lights) {
         if (l.kind == LightKind::Distant || l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite) {
             l.sceneCenter = center;
             l.sceneRadius = radius;
         }
+        LightBoundingSphere(l, view, &l.boundCenter, &l.boundRadius);
+    }
     s.lightCdf.clear();
     s.lightCdf = BuildLightCdf(s.View());
 }
