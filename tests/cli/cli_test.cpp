@@ -159,11 +159,13 @@ TEST(Cli, ResumeIsBitIdentical) {
 TEST(Cli, InterruptThenResumeIsBitIdentical) {
     std::string dir = TempDir("cli_int_resume");
     std::string scene = WriteScene(dir, 64, 8);
-    const std::string total = "400";
+    // Long enough that the interrupted render (1 thread) cannot finish within the 0.5 s before
+    // SIGINT on a fast machine (~4 s at 600 k samples/s), short enough for the full reference render.
+    const std::string total = "600";
     pid_t pid = 0;
     RunLucerna({"render", scene, "--spp", total, "--seed", "9", "--threads", "1", "--checkpoint", dir + "/c.ckpt", "-o",
          dir + "/a.exr"}, true, &pid, false);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
     kill(pid, SIGINT);
     int status = 0;
     waitpid(pid, &status, 0);
