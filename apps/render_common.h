@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "lucerna/film/render_job.h"
+#include "lucerna/render/render_job.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::app {

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/backend/cpu/embree_scene.h"
 #include "lucerna/integrators/path.h"
 #include "lucerna/scene/builder.h"

@@ -12,7 +12,7 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
-#include "lucerna/geometry/bvh.h"
+#include "lucerna/accel/bvh_build.h"
 #include "lucerna/geometry/bvh_traverse.h"
 #include "lucerna/geometry/shapes.h"
 

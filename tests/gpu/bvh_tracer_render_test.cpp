@@ -8,6 +8,7 @@
 
 #include "gpu/gpu_test_util.h"
 #include "gpu/render_compare.h"
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/backend/cpu/cpu_render.h"
 #include "lucerna/geometry/bvh_traverse.h"
 #include "lucerna/integrators/path.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "lucerna/film/render_job.h"
+#include "lucerna/render/render_job.h"
 #include "lucerna/image/image.h"
 #include "lucerna/scene/builder.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "integrators/render_helpers.h"
-#include "lucerna/film/camera.h"
+#include "lucerna/camera/camera.h"
 #include "lucerna/integrators/regularization.h"
 #include "lucerna/lights/lights.h"
 #include "lucerna/sampling/rng.h"

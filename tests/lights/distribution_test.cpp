@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "lucerna/sampling/distribution.h"
+#include "lucerna/scene/distribution_build.h"
 #include "support/test_support.h"
 
 namespace lu {

@@ -9,7 +9,8 @@
 
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/lights/lights.h"
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/scene/light_build.h"
+#include "lucerna/spectra/registry.h"
 #include "support/test_support.h"
 
 namespace lu {

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/spectra/registry.h"
 #include "lucerna/spectrum/rgb_to_spectrum.h"
 #include "materials/bxdf_test_helpers.h"
 

@@ -4,7 +4,8 @@
 
 #include <cmath>
 
-#include "lucerna/film/camera.h"
+#include "lucerna/scene/sampler_build.h"
+#include "lucerna/scene/camera_build.h"
 #include "lucerna/sampling/rng.h"
 
 using namespace lu;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "lucerna/film/filter.h"
+#include "lucerna/scene/camera_build.h"
 #include "lucerna/sampling/rng.h"
 #include "support/test_support.h"
 

@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/sampling/sampler.h"
 
 using namespace lu;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/sampling/sampler.h"
 #include "support/test_support.h"
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "lucerna/spectrum/color.h"
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/spectra/registry.h"
 #include "support/test_support.h"
 
 namespace lu {

@@ -1,9 +1,8 @@
-// Lucerna: the GPU-friendly binary BVH (host build, shared traversal in bvh_traverse.h).
+// Lucerna: the GPU-friendly binary BVH as plain data (built on the host by accel/bvh_build.h,
+// traversed by geometry/bvh_traverse.h).
 // Node layout after Aila & Laine 2009 ("Understanding the efficiency of ray traversal on GPUs"):
 // each node stores both children's boxes so one 64-byte fetch decides the traversal order.
 #pragma once
-
-#include <vector>
 
 #include "lucerna/core/scene_data.h"
 
@@ -57,50 +56,7 @@ struct BVHView {
     Span<PrimRef> prims;
 };
 
-// Statistics of a built BVH. SAH cost uses traversal cost 1 and intersection cost 1 per prim:
-// C = (sum over inner nodes of area + sum over leaves of area * count) / root area.
-struct BVHStats {
-    uint32_t primitives = 0;     // input primitives
-    uint32_t references = 0;     // prim refs in leaves (> primitives with spatial splits)
-    uint32_t innerNodes = 0, leaves = 0, maxDepth = 0, maxLeafSize = 0;
-    double sahCost = 0;
-    double buildSeconds = 0;
-};
-
-// A BVH built on the host, ready to upload (one copy per array).
-struct GpuBVH {
-    std::vector<BVHNode> nodes;
-    std::vector<PrimRef> prims;
-    Bounds3f bounds;             // of the whole scene (all primitives)
-    BVHStats stats;
-
-    BVHView View() const {
-        BVHView v;
-        v.nodes = Span<BVHNode>{nodes.data(), uint32_t(nodes.size())};
-        v.prims = Span<PrimRef>{prims.data(), uint32_t(prims.size())};
-        return v;
-    }
-};
-
-// Build options; the defaults are what every backend uses.
-struct BVHBuildOptions {
-    bool spatialSplits = true;   // SBVH-style splits (Embree's high-quality builder)
-    uint32_t maxLeafSize = 4;
-    float traversalCost = 1.0f, intersectionCost = 1.0f;
-};
-
 // Maximum tree depth the builder produces; the traversal stacks are sized from it.
 constexpr int BVHMaxDepth = 60;
-
-// Builds the BVH over every triangle, sphere and disk of `scene` (all shapes, interfaces
-// included) with Embree's SAH builder (rtcBuildBVH, RTC_BUILD_QUALITY_HIGH). Host only.
-GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options = {});
-
-// Render-space bounds of one primitive (analytic shapes: exact bounds of the transformed
-// sphere/disk, slightly padded for rounding). Host only.
-Bounds3f PrimitiveBounds(const SceneView &scene, uint32_t shape, uint32_t primitive);
-
-// Recomputes the statistics (SAH cost, depth, counts) of a built tree. Host only.
-BVHStats ComputeBVHStats(const GpuBVH &bvh);
 
 }  // namespace lu

@@ -7,8 +7,8 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
-#include "lucerna/film/camera.h"
-#include "lucerna/film/filter.h"
+#include "lucerna/camera/camera.h"
+#include "lucerna/camera/filter.h"
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/integrators/regularization.h"
 #include "lucerna/lights/lights.h"

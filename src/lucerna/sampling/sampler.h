@@ -8,10 +8,6 @@
 #include "lucerna/sampling/rng.h"
 #include "lucerna/util/vecmath.h"
 
-#if !defined(LU_DEVICE_CODE)
-#include <cstdio>
-#include <string>
-#endif
 #if (defined(__x86_64__) || defined(_M_X64)) && defined(__GNUC__) && !defined(__CUDACC__)
 #include <immintrin.h>
 #endif
@@ -369,90 +365,5 @@ struct Sampler {
         return int(uint32_t(MixBits((uint64_t(uint32_t(seed)) << 32) ^ pass ^ 0x9e3779b97f4a7c15ull)));
     }
 };
-
-#if !defined(LU_DEVICE_CODE)
-// Options of pbrt-v4's Sampler directive beyond the sample count and seed.
-struct SamplerOptions {
-    std::string randomization;   // "none", "permutedigits", "fastowen", "owen"; "" = pbrt-v4 default
-    int xSamples = 0, ySamples = 0;  // stratified; used when xSamples * ySamples == spp
-    bool jitter = true;          // stratified
-};
-
-// Builds a sampler by pbrt-v4 name: "independent", "zsobol" (default), "paddedsobol",
-// "stratified". "sobol", "halton", "pmj02bn" and unknown names fall back to ZSobol with the
-// requested spp. As pbrt-v4 does, "zsobol" rounds a non-power-of-two spp down to a power of two.
-// Anything noteworthy (fallbacks, rounding) is appended to *report (one line each) when given,
-// else printed to stderr as a warning.
-inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width, int height,
-                           const SamplerOptions &options = {}, std::string *report = nullptr) {
-    auto note = [&](const std::string &msg) {
-        if (report) *report += msg + "\n";
-        else std::fprintf(stderr, "warning: %s\n", msg.c_str());
-    };
-    Sampler s;
-    s.seed = seed;
-#if defined(LU_ZSOBOL_SIMD)
-    static const uint8_t simdLevel = detail::ZSobolSimdLevel();
-    s.simd = simdLevel;
-#endif
-    s.samplesPerPixel = Max(1, spp);
-    bool roundZSobol = true;
-    if (name == "independent") s.kind = SamplerKind::Independent;
-    else if (name == "zsobol" || name.empty()) s.kind = SamplerKind::ZSobol;
-    else if (name == "paddedsobol") s.kind = SamplerKind::PaddedSobol;
-    else if (name == "stratified") s.kind = SamplerKind::Stratified;
-    else {
-        s.kind = SamplerKind::ZSobol;
-        roundZSobol = false;
-        if (name == "sobol" || name == "halton" || name == "pmj02bn")
-            note("sampler \"" + name + "\" is not implemented; using \"zsobol\" instead");
-        else
-            note("unknown sampler \"" + name + "\"; using \"zsobol\" instead");
-    }
-
-    const std::string &rnd = options.randomization;
-    if (rnd.empty() || rnd == "fastowen") s.randomize = RandomizeStrategy::FastOwen;
-    else if (rnd == "none") s.randomize = RandomizeStrategy::None;
-    else if (rnd == "permutedigits") s.randomize = RandomizeStrategy::PermuteDigits;
-    else if (rnd == "owen") s.randomize = RandomizeStrategy::Owen;
-    else {
-        s.randomize = RandomizeStrategy::FastOwen;
-        note("unknown randomization \"" + rnd + "\"; using \"fastowen\"");
-    }
-
-    if (s.kind == SamplerKind::ZSobol) {
-        int n = s.samplesPerPixel;
-        s.log2SamplesPerPixel = Log2Int(uint64_t(n));
-        if (!IsPowerOf2(n)) {
-            if (roundZSobol) {
-                s.samplesPerPixel = 1 << s.log2SamplesPerPixel;
-                note("zsobol: " + std::to_string(n) + " samples per pixel rounded down to " +
-                     std::to_string(s.samplesPerPixel) + " (as pbrt-v4)");
-            } else {
-                note("zsobol: " + std::to_string(n) + " samples per pixel is not a power of two; samples past " +
-                     std::to_string(1 << s.log2SamplesPerPixel) + " use a second randomized pattern");
-            }
-        }
-        int res = int(RoundUpPow2(Max(1, Max(width, height))));
-        s.nBase4Digits = Log2Int(uint64_t(res)) + (s.log2SamplesPerPixel + 1) / 2;
-    } else if (s.kind == SamplerKind::Stratified) {
-        int n = s.samplesPerPixel;
-        if (options.xSamples > 0 && options.ySamples > 0 && options.xSamples * options.ySamples == n) {
-            s.xPixelSamples = options.xSamples;
-            s.yPixelSamples = options.ySamples;
-        } else {
-            // pbrt-v4's factorization for an overridden sample count.
-            int div = int(std::sqrt(double(n)));
-            while (n % div) --div;
-            s.xPixelSamples = n / div;
-            s.yPixelSamples = n / s.xPixelSamples;
-        }
-        s.jitter = options.jitter;
-    } else if (s.kind == SamplerKind::PaddedSobol && !IsPowerOf2(s.samplesPerPixel)) {
-        note("paddedsobol: non power-of-two sample count " + std::to_string(s.samplesPerPixel) + " is sub-optimal");
-    }
-    return s;
-}
-#endif
 
 }  // namespace lu

@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "lucerna/lights/equal_area.h"
-#include "lucerna/lights/light_sampler.h"
 #include "lucerna/lights/shape_sampling.h"
 #include "lucerna/scene/build_internal.h"
+#include "lucerna/scene/light_build.h"
 
 namespace lu::build {
 

@@ -6,8 +6,7 @@
 #include <array>
 #include <cmath>
 
-#include "lucerna/film/camera.h"
-#include "lucerna/film/filter.h"
+#include "lucerna/scene/camera_build.h"
 #include "lucerna/scene/build_internal.h"
 
 namespace lu {

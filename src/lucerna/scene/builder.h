@@ -10,7 +10,7 @@
 
 #include "lucerna/core/scene_data.h"
 #include "lucerna/scene/description.h"
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/spectra/registry.h"
 
 namespace lu {
 

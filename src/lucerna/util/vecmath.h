@@ -8,7 +8,7 @@ namespace lu {
 
 struct Vec2f {
     Float x = 0, y = 0;
-    LU_HD Vec2f() = default;
+    Vec2f() = default;
     LU_HD constexpr Vec2f(Float x, Float y) : x(x), y(y) {}
     LU_HD Float operator[](int i) const { return i == 0 ? x : y; }
     LU_HD Float &operator[](int i) { return i == 0 ? x : y; }
@@ -20,7 +20,7 @@ using Point2f = Vec2f;
 
 struct Vec3f {
     Float x = 0, y = 0, z = 0;
-    LU_HD Vec3f() = default;
+    Vec3f() = default;
     LU_HD constexpr Vec3f(Float x, Float y, Float z) : x(x), y(y), z(z) {}
     LU_HD Float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     LU_HD Float &operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
@@ -201,7 +201,7 @@ LU_INLINE bool Inverse(const Matrix4 &a, Matrix4 *out) {
 // An affine or projective transform with its inverse.
 struct Transform {
     Matrix4 m, mInv;
-    LU_HD Transform() = default;
+    Transform() = default;
     LU_HD Transform(const Matrix4 &m, const Matrix4 &mInv) : m(m), mInv(mInv) {}
     LU_HD Vec3f ApplyPoint(const Vec3f &p) const {
         Float x = m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3];

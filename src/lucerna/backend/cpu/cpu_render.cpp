@@ -1,4 +1,5 @@
 // Lucerna CPU backend: the pass loop, tiles, NaN guard, statistics and progress.
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/backend/cpu/cpu_render.h"
 
 #include <tbb/blocked_range2d.h>

@@ -2,7 +2,7 @@
 // sample per pixel; results depend only on the seed and pass index, never on the thread count.
 #pragma once
 
-#include "lucerna/film/render_job.h"
+#include "lucerna/render/render_job.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu {

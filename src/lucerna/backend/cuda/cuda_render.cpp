@@ -2,6 +2,7 @@
 // backend/cpu/cpu_render.cpp: same sampler, regularization schedule, NaN guard, statistics,
 // progress line, cancellation and film commit on the host; pass k + 1 renders while pass k is
 // committed. Host code (CUDA runtime API), compiled by the host compiler.
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/backend/cuda/cuda_render.h"
 
 #include <cuda_runtime.h>

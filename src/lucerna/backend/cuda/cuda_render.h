@@ -3,7 +3,7 @@
 // host code compiled without nvcc may call it (defined in lucerna_cuda only).
 #pragma once
 
-#include "lucerna/film/render_job.h"
+#include "lucerna/render/render_job.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu {

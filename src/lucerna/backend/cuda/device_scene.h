@@ -3,7 +3,7 @@
 #pragma once
 
 #include "lucerna/backend/cuda/device_buffer.h"
-#include "lucerna/geometry/bvh.h"
+#include "lucerna/accel/bvh_build.h"
 
 namespace lu {
 

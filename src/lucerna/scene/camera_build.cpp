@@ -1,6 +1,6 @@
 // Lucerna: host construction of the perspective camera's raster-to-camera transform, as pbrt-v4's
 // ProjectiveCamera / PerspectiveCamera constructors (Perspective(fov, 1e-2, 1000)).
-#include "lucerna/film/camera.h"
+#include "lucerna/scene/camera_build.h"
 
 namespace lu {
 

@@ -1,13 +1,13 @@
 // Lucerna: SpectrumRegistry (host): CIE tables, pbrt-v4's named spectra and RGB upsampling.
 // Follows pbrt-v4 util/spectrum.cpp (PiecewiseLinearSpectrum::FromInterleaved, InnerProduct,
 // SpectrumToPhotometric, SpectrumToXYZ) and util/colorspace.cpp (RGBColorSpace matrices).
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/spectra/registry.h"
 
 #include <algorithm>
 #include <cmath>
 #include <span>
 
-#include "lucerna/spectrum/cie_data.h"
+#include "lucerna/spectra/cie_data.h"
 #include "lucerna/spectrum/rgb_to_spectrum.h"
 
 namespace lu {

@@ -1,5 +1,5 @@
 // Lucerna: raw tabulated spectral data (CIE observer, standard illuminants, measured metals,
-// glass indices) compiled into lucerna_spectrum; the registry turns them into 1 nm tables.
+// glass indices) compiled into lucerna_spectra; the registry turns them into 1 nm tables.
 #pragma once
 
 namespace lu::data {

@@ -1,6 +1,6 @@
 // Lucerna: host BVH construction with Embree 3's generic builder (rtcBuildBVH, high quality =
 // binned SAH with spatial splits, Stich et al. 2009), flattened into the GPU node layout of bvh.h.
-#include "lucerna/geometry/bvh.h"
+#include "lucerna/accel/bvh_build.h"
 
 #include <embree3/rtcore.h>
 

@@ -1,6 +1,7 @@
 // Lucerna: host-side filter construction (pbrt-v4 names and defaults) and the tabulated
 // importance-sampling distribution of gaussian and mitchell filters (pbrt-v4's FilterSampler).
-#include "lucerna/film/filter.h"
+#include "lucerna/scene/camera_build.h"
+#include "lucerna/scene/distribution_build.h"
 
 #include <cmath>
 #include <stdexcept>

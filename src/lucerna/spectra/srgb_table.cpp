@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "lucerna/spectrum/registry.h"
+#include "lucerna/spectra/registry.h"
 
 #ifndef LU_RGB2SPEC_BIN
 #error "LU_RGB2SPEC_BIN must name the generated table (set by src/lucerna/spectrum/CMakeLists.txt)"

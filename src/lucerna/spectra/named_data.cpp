@@ -5,7 +5,7 @@
 //   glasses BK7, BAF10, FK51A, LASF9, SF5, SF10, SF11: refractiveindex.info (CC0), i.e. the
 //   Schott Sellmeier fits sampled every ~21 nm.
 // pbrt-v4 names the SF glasses glass-F5, glass-F10, glass-F11.
-#include "lucerna/spectrum/cie_data.h"
+#include "lucerna/spectra/cie_data.h"
 
 namespace lu::data {
 

@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "lucerna/spectrum/cie_data.h"
+#include "lucerna/spectra/cie_data.h"
 
 namespace {
 

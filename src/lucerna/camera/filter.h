@@ -8,11 +8,6 @@
 #include "lucerna/sampling/distribution.h"
 #include "lucerna/sampling/warp.h"
 
-#if !defined(LU_DEVICE_CODE)
-#include <string>
-#include <vector>
-#endif
-
 namespace lu {
 
 // ---- Filter functions (p in pixels, relative to the pixel center) ----
@@ -118,21 +113,5 @@ LU_INLINE FilterSample SampleFilter(const FilterData &f, const SceneView &scene,
     Float fCell = FilterTableValue(f, int(col), int(row), int(d.nx), int(d.ny));
     return {p, fCell / pdf};
 }
-
-#if !defined(LU_DEVICE_CODE)
-// ---- Host ----
-
-// pbrt-v4's filter by name with its defaults: gaussian (radius 1.5, sigma 0.5), box (0.5),
-// triangle (2), mitchell (2, B = C = 1/3). A radius or sigma <= 0 (or NaN) and a NaN B or C
-// mean "not given": the default is used. Throws std::invalid_argument for an unknown name
-// (pbrt-v4 also has "sinc", which Lucerna does not implement).
-FilterData MakeFilter(const std::string &name, Float xradius = -1, Float yradius = -1, Float sigma = -1,
-                      Float B = NAN, Float C = NAN);
-
-// Tabulates |f| for gaussian and mitchell filters into a Distribution2D over [0,1]^2 (cells of
-// 1/32 pixel, as pbrt-v4), appends it to dists/distData and sets f.distribution. Box and
-// triangle need no table (f.distribution = NoIndex).
-void BuildFilterDistribution(FilterData &f, std::vector<Distribution2D> &dists, std::vector<Float> &distData);
-#endif
 
 }  // namespace lu

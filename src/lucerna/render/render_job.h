@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "lucerna/film/film.h"
+#include "lucerna/render/film.h"
 
 namespace lu {
 

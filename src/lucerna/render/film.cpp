@@ -1,5 +1,5 @@
 // Lucerna: film accumulation, resolve to sRGB, checkpoint files.
-#include "lucerna/film/film.h"
+#include "lucerna/render/film.h"
 
 #include <cstdio>
 #include <cstring>

@@ -6,7 +6,7 @@
 // A subsampled from its 1 nm table to the 5 nm grid pbrt-v4 tabulates; values x100, 100 at 560 nm); D50 and ACES D60 as
 // tabulated in pbrt-v4 (computed daylight spectra, which differ slightly from CIE's D50 table).
 // Scale is irrelevant: pbrt-v4 normalizes every named illuminant to luminance CIE_Y_integral.
-#include "lucerna/spectrum/cie_data.h"
+#include "lucerna/spectra/cie_data.h"
 
 namespace lu::data {
 

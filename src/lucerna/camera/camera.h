@@ -4,7 +4,7 @@
 #pragma once
 
 #include "lucerna/core/scene_data.h"
-#include "lucerna/film/filter.h"
+#include "lucerna/camera/filter.h"
 #include "lucerna/sampling/sampler.h"
 #include "lucerna/sampling/warp.h"
 
@@ -56,15 +56,5 @@ LU_INLINE CameraSample GetCameraSample(Sampler &sampler, int px, int py, const F
     cs.filterWeight = fs.weight;
     return cs;
 }
-
-#if !defined(LU_DEVICE_CODE)
-// pbrt-v4's perspective camera: fovDeg spans the shorter image axis; the screen window defaults
-// to [-a, a] x [-1, 1] for aspect a = width/height > 1, else [-1, 1] x [-1/a, 1/a];
-// screenWindow (xmin, xmax, ymin, ymax) overrides it; frameAspectRatio > 0 replaces width/height
-// in that default. renderFromCamera maps the left-handed camera space to render space.
-CameraData MakePerspectiveCamera(const Transform &renderFromCamera, int width, int height, Float fovDeg,
-                                 Float lensRadius, Float focalDistance, const Float *screenWindow,
-                                 Float frameAspectRatio = 0);
-#endif
 
 }  // namespace lu

@@ -1,0 +1,105 @@
+// Lucerna (host): light power (pbrt-v4 Light::Phi), the power light-selection CDF of
+// lights/light_sampler.h (PowerLightSampler) and the image infinite light's distributions.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "lucerna/lights/light_sampler.h"
+#include "lucerna/scene/distribution_build.h"
+
+namespace lu {
+
+// pbrt-v4's Light::Phi(lambda): emitted power at the sampled wavelengths.
+inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const SampledWavelengths &lambda) {
+    SampledSpectrum spec = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+    switch (l.kind) {
+    case LightKind::Point: return spec * (4 * Pi);
+    case LightKind::Spot:
+        return spec * (2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2));
+    case LightKind::Distant: return spec * (Pi * Sqr(l.sceneRadius));
+    case LightKind::DiffuseArea:
+        return spec * (Pi * (l.twoSided ? 2 : 1) * ShapeArea(s, s.shapes[l.shape], l.primitive));
+    case LightKind::UniformInfinite: return spec * (4 * Pi * Pi * Sqr(l.sceneRadius));
+    case LightKind::ImageInfinite: {
+        const ImageData &im = s.images[l.image];
+        SampledSpectrum sum(0);
+        for (uint32_t y = 0; y < im.height; ++y)
+            for (uint32_t x = 0; x < im.width; ++x) {
+                Float rgb[3];
+                ImageRGB(s, im, int(x), int(y), rgb);
+                sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra);
+            }
+        return sum * (4 * Pi * Pi * Sqr(l.sceneRadius) * l.scale / Float(uint64_t(im.width) * im.height));
+    }
+    }
+    return SampledSpectrum(0);
+}
+
+// The power pbrt-v4's PowerLightSampler assigns to a light: Phi at the wavelengths
+// SampleVisible(0.5), divided by their pdfs, averaged.
+inline Float LightPower(const Light &l, const SceneView &s) {
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+    return SafeDiv(LightPhi(l, s, lambda), lambda.PDF()).Average();
+}
+
+// The light selection CDF (size lights + 1) proportional to LightPower; uniform if every light
+// has zero power (as pbrt-v4). Needs every field of s that LightPower reads (shapes, spectra,
+// images, rgb table). Empty when there are no lights.
+inline std::vector<Float> BuildLightCdf(const SceneView &s) {
+    std::vector<Float> cdf;
+    uint32_t n = s.lights.size;
+    if (n == 0) return cdf;
+    std::vector<double> power(n);
+    double total = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        Float p = LightPower(s.lights[i], s);
+        power[i] = (p > 0 && std::isfinite(p)) ? double(p) : 0.0;
+        total += power[i];
+    }
+    if (total == 0) {
+        for (auto &p : power) p = 1;
+        total = n;
+    }
+    cdf.resize(n + 1);
+    cdf[0] = 0;
+    double run = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        run += power[i];
+        cdf[i + 1] = Float(run / total);
+    }
+    cdf[n] = 1;
+    return cdf;
+}
+
+// The two sampling distributions of an image infinite light over a square equal-area RGB(A)
+// image (row-major, top row first): pbrt-v4's `distribution` (average of the channels per
+// texel) and the MIS-compensated one (max(0, v - average), all-ones if that is all zero).
+// Appends both to `dists` (plain first) and returns the index of the plain one, which goes in
+// Light::distribution.
+inline uint32_t BuildImageInfiniteDistributions(const float *texels, int width, int height, int channels,
+                                                std::vector<Distribution2D> &dists, std::vector<Float> &distData) {
+    size_t count = size_t(width) * height;
+    std::vector<float> d(count);
+    double sum = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const float *t = texels + i * channels;
+        float v = channels >= 3 ? (t[0] + t[1] + t[2]) / 3 : t[0];
+        d[i] = v;
+        sum += v;
+    }
+    uint32_t index = uint32_t(dists.size());
+    dists.push_back(BuildDistribution2D(d.data(), width, height, distData));
+    float average = float(sum / double(count));
+    bool allZero = true;
+    for (float &v : d) {
+        v = std::max(v - average, 0.f);
+        if (v != 0) allZero = false;
+    }
+    if (allZero) std::fill(d.begin(), d.end(), 1.f);
+    dists.push_back(BuildDistribution2D(d.data(), width, height, distData));
+    return index;
+}
+
+}  // namespace lu
