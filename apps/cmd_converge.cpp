@@ -27,11 +27,11 @@ namespace lu::app {
 namespace {
 
 struct ConvergeArgs {
-    std::string scene, ref, integrators = "path,regpath", res, outDir, device = "auto";
+    std::string scene, ref, integrators = "path,regpath", res, outDir;
     double time = 0;
-    int spp = 0, runs = 1, threads = 0, maxDepth = -1;
+    int spp = 0, runs = 1;
     long long seed = 0;
-    double regRadius = -1;
+    SettingOverrides settings;   // the other render settings (--maxdepth, --reg-radius, --threads, ...)
     double excludeAbove = 100;
     bool noReport = false;
 };
@@ -134,20 +134,14 @@ int RunConverge(const ConvergeArgs &a) {
     // that drifts during the benchmark then affects every integrator alike at equal time.
     for (int run = 0; run < a.runs; ++run) {
         for (const std::string &integ : integrators) {
-            RenderRequest req;
-            req.sceneFile = a.scene;
-            req.integrator = integ;
-            req.res = a.res;
-            req.spp = a.spp;
-            req.time = a.time;
-            req.seed = a.seed + run;
-            req.threads = a.threads;
-            req.maxDepth = a.maxDepth;
-            req.regRadius = a.regRadius;
-            req.device = a.device;
-            req.progress = false;
+            SettingOverrides o = a.settings;
+            o.emplace_back("integrator", integ);
+            o.emplace_back("seed", std::to_string(a.seed + run));
+            o.emplace_back("progress", "false");
+            if (a.spp > 0) o.emplace_back("spp", std::to_string(a.spp));
+            if (a.time > 0) o.emplace_back("time", Num(a.time));
             Prepared prep;
-            int rc = PrepareRender(req, &prep);
+            int rc = PrepareRender(a.scene, a.res, o, &prep);
             if (rc != ExitOk) return rc;
             const FilmData &filmData = prep.scene->View().film;
             if (filmData.width != ref.width || filmData.height != ref.height) {
@@ -180,9 +174,11 @@ int RunConverge(const ConvergeArgs &a) {
             };
             FilmAccumulator film;
             RenderOutcome out;
-            rc = RunBackend(prep, film, onPass, &out);
+            RenderControl control;
+            control.onPass = onPass;
+            rc = RunBackend(prep, film, control, &out);
             if (rc != ExitOk) return rc;
-            deviceName = out.device;
+            deviceName = prep.deviceName;
             std::fprintf(stderr, "converge: %s run %d: %u spp in %.2f s, final relMSE %s\n", integ.c_str(), run, film.passes,
                          out.stats.seconds, runSnaps.empty() ? "-" : Num(errors(runSnaps.back().image).relMSE).c_str());
         }
@@ -274,10 +270,7 @@ void RegisterConverge(CLI::App &app, CommandTable &table) {
     sub->add_option("--runs", args->runs, "Independent runs (seeds) per integrator")->check(CLI::Range(1, 1000));
     sub->add_option("--res", args->res, "Resolution WxH (must match the reference)");
     sub->add_option("--seed", args->seed, "Seed of run 0 (run k uses seed + k)")->check(CLI::Range(0LL, 4294967295LL));
-    sub->add_option("--threads", args->threads, "CPU threads")->check(CLI::Range(1, 4096));
-    sub->add_option("--maxdepth", args->maxDepth, "Maximum path depth")->check(CLI::Range(0, 100000));
-    sub->add_option("--reg-radius", args->regRadius, "regpath: initial radius r0");
-    sub->add_option("--device", args->device, "cpu, cuda or auto")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+    AddSettingOptions(sub, &args->settings, {"integrator", "seed", "spp", "time", "progress"});
     sub->add_flag("--no-report", args->noReport, "Skip the plots and index.html");
     sub->add_option("--exclude-above", args->excludeAbove,
                     "Exclude pixels (and their 8 neighbours) where the reference exceeds this value: directly visible "

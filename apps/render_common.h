@@ -1,49 +1,48 @@
-// Lucerna CLI: scene loading and backend dispatch shared by `render` and `converge`.
+// Lucerna CLI: scene loading, settings and backend dispatch shared by `render` and `converge`.
 #pragma once
+
+#include <CLI/CLI.hpp>
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "lucerna/render/render_job.h"
+#include "lucerna/render/pass_driver.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::app {
 
-struct RenderRequest {
-    std::string sceneFile, integrator, res, device = "auto";
-    int spp = 0, maxDepth = -1, threads = 0;
-    long long seed = -1;
-    double time = 0, regRadius = -1, regLambda = -1, regAngle = -1;
-    bool progress = true;
-};
+// Render settings given on the command line, by name (scene/render_settings.h), in order.
+using SettingOverrides = std::vector<std::pair<std::string, std::string>>;
+
+// Registers every render setting as --NAME on `sub` (except those in `exclude`); the ones given
+// are appended to *overrides when CLI11 parses them. Also -q/--quiet for "progress false".
+void AddSettingOptions(CLI::App *sub, SettingOverrides *overrides, const std::vector<std::string> &exclude = {});
 
 struct Prepared {
     std::unique_ptr<HostScene> scene;
-    RenderJob job;
-    std::string integratorName;   // "path" or "regpath"
-    std::string deviceName;       // what actually renders
-    uint64_t sceneHash = 0;       // scene file + settings that determine the sums (checkpoints)
+    RenderSettings settings;      // the scene's, then the command line's
+    std::string deviceName;       // what actually renders ("cpu", "cuda NAME")
+    uint64_t checkpointKey = 0;   // scene file, resolution, sampler and the settings that determine the sums
     std::string sceneFile;
 };
+
+// Loads the scene and applies the overrides; prints diagnostics; returns an exit code (0 ok, 2 bad
+// input). `res` is "" or "WxH". "time" given without "spp": passes until the time budget.
+int PrepareRender(const std::string &sceneFile, const std::string &res, const SettingOverrides &overrides, Prepared *out);
 
 struct RenderOutcome {
     RenderStats stats;
     uint32_t passes = 0;          // total passes in the film
-    int width = 0, height = 0;
-    std::string integrator, device, sceneFile;
-    double regRadius = 0, regLambda = 0, regAngle = 0;   // regpath: r0 (world units), lambda, sigma0 (radians)
 };
 
-// Loads and validates; prints diagnostics; returns an exit code (0 ok, 2 bad input).
-int PrepareRender(const RenderRequest &req, Prepared *out);
-// Default r0: a fraction of the scene bounding-box diagonal (see docs/regularization.md).
-double DefaultRegRadius(const Bounds3f &bounds);
-// Runs the chosen backend from film.passes up to job.spp.
-int RunBackend(Prepared &prep, FilmAccumulator &film, const PassCallback &onPass, RenderOutcome *out);
+// Runs the chosen backend from film.passes up to settings.spp.
+int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &control, RenderOutcome *out);
 // EXR (with lucerna.* metadata, spp reached) and optionally PNG; atomic writes.
 void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const RenderOutcome &out, const std::string &path, bool png);
 std::string DefaultOutputName(const Prepared &prep);
-std::string SummaryLine(const RenderOutcome &o);
-std::string StatsJson(const RenderOutcome &o);
+std::string SummaryLine(const Prepared &prep, const RenderOutcome &o);
+std::string StatsJson(const Prepared &prep, const RenderOutcome &o);
 
 }  // namespace lu::app

@@ -10,27 +10,20 @@
 #include <string>
 #include <vector>
 
-#include "lucerna/render/render_job.h"
+#include "lucerna/render/pass_driver.h"
 #include "lucerna/image/image.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::test {
 
-// The job `lucerna render` would run for this scene (apps/render_common.cpp: PrepareRender).
-inline RenderJob JobForScene(const HostScene &scene, const std::string &integrator, int spp, uint32_t seed) {
-    RenderJob job;
-    const RenderSettings &s = scene.settings;
-    job.spp = spp;
-    job.seed = seed;
-    job.maxDepth = s.maxDepth;
-    job.progress = false;
-    job.samplerName = s.sampler;
-    job.samplerSpp = std::max(1, s.spp);
-    job.regularize = integrator == "regpath";
-    job.regLambda = s.regLambda;
-    job.regRadius = s.regRadius > 0 ? s.regRadius : (scene.bounds.Empty() ? 0.01 : 0.01 * Length(scene.bounds.Diagonal()));
-    job.regAngle = (s.regAngle > 0 ? s.regAngle : 2.0) * 3.14159265358979323846 / 180;
-    return job;
+// The settings `lucerna render SCENE --integrator I --spp N --seed S -q` would use.
+inline RenderSettings SettingsFor(const HostScene &scene, const std::string &integrator, int spp, uint32_t seed) {
+    RenderSettings s = scene.settings;
+    s.integrator = integrator == "regpath" ? IntegratorKind::RegPath : IntegratorKind::Path;
+    s.spp = spp;
+    s.seed = seed;
+    s.progress = false;
+    return s;
 }
 
 // z such that P(|N(0,1)| > z) = p (bisection on erfc).

@@ -71,8 +71,8 @@ TEST(GpuRender, MatchesCpuOnSharedScenes) {
             RenderStats cpuTotal, gpuTotal;
             for (int s = 0; s < kSeeds; ++s) {
                 FilmAccumulator fc, fg;
-                RenderStats sc = RenderCPU(*gs.host, test::JobForScene(*gs.host, integ, kSpp, 1 + s), fc);
-                RenderStats sg = RenderCUDA(*gs.dev, test::JobForScene(*gs.host, integ, kSpp, 101 + s), fg);
+                RenderStats sc = RenderCPU(*gs.host, test::SettingsFor(*gs.host, integ, kSpp, 1 + s), fc);
+                RenderStats sg = RenderCUDA(*gs.dev, gs.host->sampler, test::SettingsFor(*gs.host, integ, kSpp, 101 + s), fg);
                 cpu.push_back(fc.Resolve(filmData));
                 gpu.push_back(fg.Resolve(filmData));
                 ASSERT_EQ(fg.passes, uint32_t(kSpp));
@@ -101,30 +101,42 @@ TEST(GpuRender, MatchesCpuOnSharedScenes) {
 #endif
 }
 
-// Same seed: the device runs the same sample values through the same code, so on a flat diffuse
-// scene nearly every pixel agrees to 1e-3 (FMA contraction changes the last bits only). Other
-// scenes are printed, not checked: curved mirrors and glass amplify last-bit differences.
+// Same seed: the device runs the same sample values through the same code and the same BVH
+// traversal as the CPU backend with settings.cpuTracer = BVH, so pixels differ only where last-bit
+// differences (FMA contraction, CUDA's libm) change a path. How much such differences spread is a
+// property of the scene (curved mirrors and glass amplify them); it is measured on the CPU alone,
+// Embree against the BVH traversal (two tracers of different rounding), and the device must agree
+// with the CPU at least that well on every scene (a flat diffuse scene: 99%).
 TEST(GpuRender, SameSeedMatchesCpuPerPixel) {
     LU_REQUIRE_GPU();
 #if defined(LUCERNA_HAVE_CUDA)
-    for (const std::string &file : test::SharedSceneFiles()) {
-        GpuScene gs(LoadAt(file, kRes));
-        RenderJob job = test::JobForScene(*gs.host, "path", 2, 7);
-        FilmAccumulator fc, fg;
-        RenderCPU(*gs.host, job, fc);
-        RenderCUDA(*gs.dev, job, fg);
-        size_t close = 0, n = size_t(kRes) * kRes;
+    auto equalFraction = [](const FilmAccumulator &a, const FilmAccumulator &b) {
+        size_t close = 0, n = a.xyzw.size() / 4;
         for (size_t i = 0; i < n; ++i) {
             bool same = true;
             for (int k = 0; k < 4; ++k) {
-                double a = fc.xyzw[4 * i + k], b = fg.xyzw[4 * i + k];
-                same &= std::abs(a - b) <= 1e-3 * (std::abs(a) + std::abs(b)) + 1e-6;
+                double x = a.xyzw[4 * i + k], y = b.xyzw[4 * i + k];
+                same &= std::abs(x - y) <= 1e-3 * (std::abs(x) + std::abs(y)) + 1e-6;
             }
             close += same;
         }
-        double frac = double(close) / n;
-        std::printf("[ same seed ] %-52s %.2f%% of pixels equal to 1e-3\n", file.c_str(), 100 * frac);
-        if (file == "bitterli-cornell-box/scene-v4.pbrt") EXPECT_GE(frac, 0.99);
+        return double(close) / double(n);
+    };
+    for (const std::string &file : test::SharedSceneFiles()) {
+        SCOPED_TRACE(file);
+        GpuScene gs(LoadAt(file, kRes));
+        for (const char *integ : {"path", "regpath"}) {
+            RenderSettings settings = test::SettingsFor(*gs.host, integ, 2, 7);
+            FilmAccumulator embree, bvh, gpu;
+            RenderCPU(*gs.host, settings, embree);
+            settings.cpuTracer = CpuTracer::BVH;
+            RenderCPU(*gs.host, settings, bvh);
+            RenderCUDA(*gs.dev, gs.host->sampler, settings, gpu);
+            double tracers = equalFraction(embree, bvh), device = equalFraction(bvh, gpu);
+            std::printf("[ same seed ] %-52s %-7s gpu = cpu(bvh) on %.2f%% of pixels; embree = bvh on %.2f%%\n",
+                        file.c_str(), integ, 100 * device, 100 * tracers);
+            EXPECT_GE(device, std::min(0.99, tracers - 0.02)) << integ;
+        }
     }
 #endif
 }
@@ -142,7 +154,7 @@ TEST(GpuRender, NanGuardRejectsAndCounts) {
     ASSERT_EQ(scene->materials.size(), 1u);
     scene->materials[0].reflectance.kind = TextureKind::Constant;
     scene->materials[0].reflectance.value = Spectrum::Const(std::nanf(""));
-    RenderJob job = test::JobForScene(*scene, "path", 4, 0);
+    RenderSettings job = test::SettingsFor(*scene, "path", 4, 0);
     FilmAccumulator fc, fg;
     RenderStats sc = RenderCPU(*scene, job, fc);
     RenderStats sg = RenderCUDA(*scene, job, fg);
@@ -164,35 +176,39 @@ TEST(GpuRender, PassLoopContract) {
     LU_REQUIRE_GPU();
 #if defined(LUCERNA_HAVE_CUDA)
     GpuScene gs(LoadAt("bitterli-cornell-box/scene-v4.pbrt", 32));
-    RenderJob job = test::JobForScene(*gs.host, "regpath", 6, 3);
+    RenderSettings job = test::SettingsFor(*gs.host, "regpath", 6, 3);
+    const Sampler &smp = gs.host->sampler;
     FilmAccumulator full, part;
-    RenderStats s = RenderCUDA(*gs.dev, job, full);
+    RenderStats s = RenderCUDA(*gs.dev, smp, job, full);
     EXPECT_EQ(full.passes, 6u);
     EXPECT_EQ(s.passesThisRun, 6u);
     EXPECT_EQ(s.samples, 6u * 32 * 32);
     EXPECT_GT(s.rays, s.samples);
-    RenderJob first = job;
+    RenderSettings first = job;
     first.spp = 2;
-    RenderCUDA(*gs.dev, first, part);
-    RenderStats rest = RenderCUDA(*gs.dev, job, part);
+    RenderCUDA(*gs.dev, smp, first, part);
+    RenderStats rest = RenderCUDA(*gs.dev, smp, job, part);
     EXPECT_EQ(rest.passesThisRun, 4u);
     EXPECT_EQ(part.passes, 6u);
     EXPECT_TRUE(part.xyzw == full.xyzw) << "a resumed film differs from an uninterrupted one";
 
     FilmAccumulator stopped;
     int calls = 0;
-    RenderCUDA(*gs.dev, job, stopped, [&](const FilmAccumulator &f, const RenderStats &) { return ++calls < 2; });
+    RenderControl stop;
+    stop.onPass = [&](const FilmAccumulator &, const RenderStats &) { return ++calls < 2; };
+    RenderCUDA(*gs.dev, smp, job, stopped, stop);
     EXPECT_EQ(calls, 2);
     EXPECT_EQ(stopped.passes, 2u);
 
     std::atomic<bool> cancel{false};
-    RenderJob cj = job;
-    cj.cancel = &cancel;
-    FilmAccumulator cancelled;
-    RenderStats cs = RenderCUDA(*gs.dev, cj, cancelled, [&](const FilmAccumulator &, const RenderStats &) {
+    RenderControl cc;
+    cc.cancel = &cancel;
+    cc.onPass = [&](const FilmAccumulator &, const RenderStats &) {
         cancel = true;
         return true;
-    });
+    };
+    FilmAccumulator cancelled;
+    RenderStats cs = RenderCUDA(*gs.dev, smp, job, cancelled, cc);
     EXPECT_TRUE(cs.interrupted);
     EXPECT_EQ(cancelled.passes, 1u);
 #endif

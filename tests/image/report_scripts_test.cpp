@@ -127,14 +127,15 @@ TEST(ReportScripts, WorksWithoutFinalCsvAndUpdatesBenchmarks) {
     ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py --benchmarks " + md + " " + dir + " > /dev/null"), 0);
     ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py --benchmarks " + md + " " + dir + " > /dev/null"), 0);
     std::string text = ReadText(md);
-    EXPECT_NE(text.find("| lucerna_test_report_minimal |"), std::string::npos) << text;
+    std::string name = fs::path(dir).filename().string();   // TempDir's name: lucerna_test_report_minimal_PID
+    EXPECT_NE(text.find("| " + name + " |"), std::string::npos) << text;
     EXPECT_NE(text.find("intro"), std::string::npos);
     EXPECT_NE(text.find("after"), std::string::npos);
     EXPECT_EQ(text.find("\nold\n"), std::string::npos);
     size_t first = text.find("<!-- BEGIN convergence (generated");
     ASSERT_NE(first, std::string::npos);
     EXPECT_EQ(text.find("<!-- BEGIN convergence (generated", first + 1), std::string::npos);  // replaced, not appended twice
-    EXPECT_TRUE(fs::exists(dir + "/benchmarks/lucerna_test_report_minimal_time.png"));
+    EXPECT_TRUE(fs::exists(dir + "/benchmarks/" + name + "_time.png"));
 
     // Bad input: a CSV without the required columns.
     std::ofstream(dir + "/convergence.csv") << "integrator,spp\npath,1\n";

@@ -59,23 +59,23 @@ TEST(Regularization, ConeGeometryAndPdfConversion) {
 TEST(Regularization, MisWeightsSumToOneAndLimits) {
     for (Float pi : {1e-3f, 0.5f, 2.f, 1e4f})
         for (Float pe : {1e-3f, 0.5f, 2.f, 1e4f})
-            EXPECT_NEAR(RegularizedExplicitWeight(pi, pe) + RegularizedImplicitWeight(pi, pe), 1.0, 1e-6);
+            EXPECT_NEAR(RegularizedConnectionWeight(pi, pe) + RegularizedHitWeight(pi, pe), 1.0, 1e-6);
     // Area light, r -> 0: the cone pdf grows without bound and the implicit (unbiased) technique
     // takes the whole weight.
     Float pExpl = 0.7f;
     Float prev = 0;
     for (Float r : {1.f, 1e-1f, 1e-2f, 1e-3f}) {
-        Float wImpl = RegularizedImplicitWeight(ConePdfW(OneMinusConeCosForDisc(2.f, r)), pExpl);
+        Float wImpl = RegularizedHitWeight(ConePdfW(OneMinusConeCosForDisc(2.f, r)), pExpl);
         EXPECT_GE(wImpl, prev);
         prev = wImpl;
     }
     EXPECT_GT(prev, 0.999999f);
-    EXPECT_EQ(RegularizedImplicitWeight(Infinity, pExpl), 1.f);
+    EXPECT_EQ(RegularizedHitWeight(Infinity, pExpl), 1.f);
     // Delta lights: no implicit technique; the regularized connection has weight 1.
-    EXPECT_EQ(RegularizedExplicitWeight(ConePdfW(0.01f), Infinity), 1.f);
-    EXPECT_EQ(RegularizedImplicitWeight(ConePdfW(0.01f), Infinity), 0.f);
+    EXPECT_EQ(RegularizedConnectionWeight(ConePdfW(0.01f), Infinity), 1.f);
+    EXPECT_EQ(RegularizedHitWeight(ConePdfW(0.01f), Infinity), 0.f);
     // Tiny light (p_expl >> p_impl): the regularized technique dominates.
-    EXPECT_GT(RegularizedExplicitWeight(1.f, 1e4f), 0.999f);
+    EXPECT_GT(RegularizedConnectionWeight(1.f, 1e4f), 0.999f);
 }
 
 namespace {
@@ -89,7 +89,7 @@ const Vec3f kLight(-0.3f, 1, 0), kVirtual(0.3f, 1, 0);
 std::string MirrorScene(double radius) {
     return "LookAt -1 3 0  -1 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
            "Film \"rgb\" \"integer xresolution\" [ 24 ] \"integer yresolution\" [ 24 ]\nPixelFilter \"box\"\n"
-           "Sampler \"zsobol\" \"integer pixelsamples\" [ 64 ]\n"
+           "Sampler \"zsobol\" \"integer pixelsamples\" [ 256 ]\n"
            "Integrator \"regpath\" \"integer maxdepth\" [ 2 ] \"float radius\" [ " + std::to_string(radius) + " ]\n"
            "WorldBegin\nLightSource \"point\" \"point3 from\" [ -0.3 1 0 ] \"rgb I\" [ 10 10 10 ]\n"
            "AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
@@ -150,20 +150,14 @@ MeanSE ResidualMean(const Image &render, const Image &analytic) {
 // Renders passes [firstPass, firstPass + passes) only: the film starts empty at pass index
 // firstPass, so r_N is that of passes N = firstPass + 1 ...
 Image RenderPasses(const HostScene &scene, bool regularize, uint32_t firstPass, int passes, double radius) {
-    RenderJob job;
-    job.spp = int(firstPass) + passes;
-    job.maxDepth = 2;
-    job.seed = 3;
-    job.progress = false;
-    job.regularize = regularize;
-    job.regRadius = radius;
-    job.regAngle = 0.01;
-    job.samplerName = "zsobol";
-    job.samplerSpp = 256;
+    RenderSettings settings = TestSettings(scene, int(firstPass) + passes, 2, 3);
+    settings.integrator = regularize ? IntegratorKind::RegPath : IntegratorKind::Path;
+    settings.regRadius = radius;
+    settings.regAngle = 0.01 * 180 / M_PI;
     FilmAccumulator film;
     film.Resize(scene.View().film.width, scene.View().film.height);
     film.passes = firstPass;
-    RenderStats st = RenderCPU(scene, job, film);
+    RenderStats st = RenderCPU(scene, settings, film);
     EXPECT_EQ(st.rejected, 0u);
     return film.Resolve(scene.View().film);
 }

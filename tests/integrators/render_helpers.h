@@ -26,25 +26,34 @@ inline std::unique_ptr<HostScene> LoadSceneText(const std::string &name, const s
     return LoadScene(path, diag, opts);
 }
 
-inline RenderResultForTest RenderScene(const HostScene &scene, int spp, int maxDepth, uint32_t seed = 0, int threads = 0,
-                                       int strategy = 0, bool regularize = false, double regRadius = 0, double regAngle = 0) {
-    RenderJob job;
-    job.spp = spp;
-    job.maxDepth = maxDepth;
-    job.seed = seed;
-    job.threads = threads;
-    job.progress = false;
-    job.lightStrategy = strategy;
-    job.regularize = regularize;
-    job.regRadius = regRadius;
-    job.regAngle = regAngle;
-    job.samplerName = scene.settings.sampler;
-    job.samplerSpp = scene.settings.spp;
+// The scene's own settings with a fixed pass count, quiet.
+inline RenderSettings TestSettings(const HostScene &scene, int spp, int maxDepth, uint32_t seed = 0) {
+    RenderSettings s = scene.settings;
+    s.spp = spp;
+    s.maxDepth = maxDepth;
+    s.seed = seed;
+    s.progress = false;
+    return s;
+}
+
+inline RenderResultForTest RenderScene(const HostScene &scene, const RenderSettings &settings) {
     FilmAccumulator film;
     RenderResultForTest r;
-    r.stats = RenderCPU(scene, job, film);
+    r.stats = RenderCPU(scene, settings, film);
     r.image = film.Resolve(scene.View().film);
     return r;
+}
+
+// regAngle in radians (RenderSettings::regAngle is in degrees).
+inline RenderResultForTest RenderScene(const HostScene &scene, int spp, int maxDepth, uint32_t seed = 0, int threads = 0,
+                                       int strategy = 0, bool regularize = false, double regRadius = 0, double regAngle = 0) {
+    RenderSettings s = TestSettings(scene, spp, maxDepth, seed);
+    s.threads = threads;
+    s.lightStrategy = LightStrategy(strategy);
+    s.integrator = regularize ? IntegratorKind::RegPath : IntegratorKind::Path;
+    if (regRadius > 0) s.regRadius = regRadius;
+    if (regAngle > 0) s.regAngle = regAngle * 180 / 3.14159265358979323846;
+    return RenderScene(scene, s);
 }
 
 // Mean and standard error of channel c over a pixel rectangle [x0,x1) x [y0,y1).

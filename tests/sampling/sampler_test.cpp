@@ -267,7 +267,7 @@ TEST(Sampler, MakeSamplerNamesAndReports) {
     s = MakeSampler("sobol", 64, 0, 32, 32, {}, &report);
     EXPECT_EQ(s.kind, SamplerKind::ZSobol);
     EXPECT_EQ(s.SamplesPerPixel(), 64);
-    EXPECT_NE(report.find("sobol"), std::string::npos);
+    EXPECT_TRUE(report.empty()) << report;   // the scene builder reports the substitution, located
     report.clear();
     s = MakeSampler("bogus", 6, 0, 32, 32, {}, &report);
     EXPECT_EQ(s.kind, SamplerKind::ZSobol);

@@ -79,8 +79,10 @@ TEST(SharedScenes, BuildWithoutPictureChangingUnsupportedFeatures) {
             FAIL() << e.Format();
         }
         // Everything refused for changing the picture is an error; what remains may only be the
-        // integrator substitution (bdpt / sppm converge to the path tracer's image).
-        for (const std::string &u : diag.unsupported) EXPECT_EQ(u.rfind("Integrator ", 0), 0u) << u;
+        // integrator substitution (bdpt / sppm converge to the path tracer's image) and the sampler
+        // substitution (another low-discrepancy pattern: the same expected image).
+        for (const std::string &u : diag.unsupported)
+            EXPECT_TRUE(u.rfind("Integrator ", 0) == 0 || u.rfind("Sampler ", 0) == 0) << u;
         for (const std::string &w : diag.warnings) EXPECT_FALSE(Contains(w, "is not used by")) << w;
         EXPECT_EQ(s->stats.triangles, sc.triangles);
         EXPECT_EQ(s->spheres.size(), size_t(sc.spheres));
@@ -112,11 +114,11 @@ TEST(SharedScenes, CornellBoxDetails) {
     auto s = LoadScene(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), diag, BuildOptions{});
     EXPECT_EQ(s->film.width, 1024);
     EXPECT_EQ(s->film.height, 1024);
-    EXPECT_EQ(s->settings.integrator, "path");
+    EXPECT_EQ(s->settings.integrator, IntegratorKind::Path);
     EXPECT_EQ(s->settings.maxDepth, 65);
-    EXPECT_EQ(s->settings.sampler, "sobol");
+    EXPECT_EQ(s->stats.samplerName, "sobol");
     EXPECT_EQ(s->settings.spp, 64);
-    EXPECT_EQ(s->settings.outputFilename, "cornell-box.png");
+    EXPECT_EQ(s->outputFilename, "cornell-box.png");
     EXPECT_EQ(s->filter.kind, FilterKind::Triangle);
     EXPECT_FLOAT_EQ(s->filter.radiusX, 1.f);
     EXPECT_NEAR(s->stats.fov, 19.5, 1e-9);
@@ -185,17 +187,21 @@ TEST(TestScenes, AllBuildWithoutWarnings) {
         } catch (const SceneError &e) {
             FAIL() << e.Format();
         }
-        EXPECT_TRUE(diag.unsupported.empty());
-        for (const std::string &w : diag.warnings) ADD_FAILURE() << w;
+        // features.pbrt asks for the halton sampler, which Lucerna substitutes (reported, located).
+        std::vector<std::string> expected;
+        if (std::string(name) == "features.pbrt") expected = {"Sampler \"halton\""};
+        EXPECT_EQ(diag.unsupported, expected);
+        for (const std::string &w : diag.warnings)
+            if (!Contains(w, "Sampler \"halton\" is not supported")) ADD_FAILURE() << w;
     }
 }
 
 TEST(TestScenes, Features) {
     Diagnostics diag;
     auto s = LoadTestScene("features.pbrt", diag);
-    EXPECT_EQ(s->settings.integrator, "regpath");
+    EXPECT_EQ(s->settings.integrator, IntegratorKind::RegPath);
     EXPECT_EQ(s->settings.maxDepth, 8);
-    EXPECT_EQ(s->settings.sampler, "halton");
+    EXPECT_EQ(s->stats.samplerName, "halton");
     EXPECT_FLOAT_EQ(s->film.imagingRatio, 2);
     EXPECT_EQ(s->filter.kind, FilterKind::Mitchell);
     EXPECT_EQ(s->stats.lightsByType.at("point"), 1);
@@ -621,23 +627,25 @@ TEST(Shapes, InstancesAreFlattened) {
 TEST(Settings, IntegratorsAndSamplers) {
     Diagnostics diag;
     auto s = Build("Integrator \"sppm\" \"integer maxdepth\" 9 \"float radius\" 0.01\nSampler \"independent\" \"integer pixelsamples\" 32\nWorldBegin\n", diag);
-    EXPECT_EQ(s->settings.integrator, "path");
-    EXPECT_EQ(s->settings.integratorAsRead, "sppm");
+    EXPECT_EQ(s->settings.integrator, IntegratorKind::Path);
+    EXPECT_EQ(s->stats.integratorAsRead, "sppm");
     EXPECT_EQ(s->settings.maxDepth, 9);
-    EXPECT_EQ(s->settings.sampler, "independent");
+    EXPECT_EQ(s->stats.samplerName, "independent");
+    EXPECT_EQ(s->sampler.kind, SamplerKind::Independent);
     EXPECT_EQ(s->settings.spp, 32);
     ASSERT_EQ(diag.unsupported.size(), 1u);
     EXPECT_EQ(diag.unsupported[0], "Integrator \"sppm\"");
     Diagnostics d2;
     auto r = Build("Integrator \"regpath\" \"float radius\" 0.05 \"float lambda\" 0.25 \"float angle\" 3\nWorldBegin\n", d2);
-    EXPECT_EQ(r->settings.integrator, "regpath");
-    EXPECT_TRUE(r->settings.regularize);
+    EXPECT_EQ(r->settings.integrator, IntegratorKind::RegPath);
+    EXPECT_TRUE(r->settings.Regularizes());
     EXPECT_DOUBLE_EQ(r->settings.regRadius, 0.05);
     EXPECT_DOUBLE_EQ(r->settings.regLambda, 0.25);
     EXPECT_DOUBLE_EQ(r->settings.regAngle, 3);
     Diagnostics d3;
     auto z = Build("WorldBegin\n", d3);
-    EXPECT_EQ(z->settings.sampler, "zsobol");
+    EXPECT_EQ(z->stats.samplerName, "zsobol");
+    EXPECT_EQ(z->sampler.kind, SamplerKind::ZSobol);
     EXPECT_EQ(z->settings.spp, 16);
     EXPECT_EQ(z->settings.maxDepth, 5);
     EXPECT_EQ(z->filter.kind, FilterKind::Gaussian);

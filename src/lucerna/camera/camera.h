@@ -44,13 +44,14 @@ struct CameraSample {
 };
 
 // pbrt-v4's GetCameraSample: the filter offset from sampler.GetPixel2D(), then one dimension for
-// time and two for the lens, in that order. pFilm = pixel + (0.5, 0.5) + filter offset.
+// time and two for the lens, in that order. pFilm = pixel + (0.5, 0.5) + filter offset (summed
+// in that order: the renderer's rounding).
 // (pbrt-v4's integrators draw the wavelength sample with Get1D() before calling this.)
 LU_INLINE CameraSample GetCameraSample(Sampler &sampler, int px, int py, const FilterData &filter,
                                        const SceneView &scene) {
     FilterSample fs = SampleFilter(filter, scene, sampler.GetPixel2D());
     CameraSample cs;
-    cs.pFilm = Vec2f(Float(px) + fs.p.x + 0.5f, Float(py) + fs.p.y + 0.5f);
+    cs.pFilm = Vec2f(Float(px) + 0.5f + fs.p.x, Float(py) + 0.5f + fs.p.y);
     cs.time = sampler.Get1D();
     cs.pLens = sampler.Get2D();
     cs.filterWeight = fs.weight;

@@ -4,16 +4,15 @@
 //     phi_sigma(D, w) = 1 / (2 pi (1 - cos sigma))  if angle(D, w) < sigma, else 0,
 // with cos sigma = d / sqrt(d^2 + r_N^2) for a light point at distance d, and sigma = sigma_N for
 // lights at infinity; r_N = r0 N^-lambda, sigma_N = sigma0 N^-lambda (N = pass index, from 1).
-// MIS (power heuristic) between this biased explicit technique and the unbiased implicit one uses
-// p_impl = phi_sigma and p_expl = the light sampler's pdf, both in solid angle at the specular
-// vertex (the ratio is the same in the area measure at the light point: both convert with
-// cos theta_z / d^2). See ../shared/METHOD.md.
+// The MIS weights between this biased explicit technique and the unbiased implicit one are in
+// integrators/mis.h. See docs/regularization.md.
 #pragma once
 
 #include "lucerna/util/vecmath.h"
 
 namespace lu {
 
+// The kernel of one pass (the same for every pixel of the pass).
 struct RegularizationParams {
     bool enabled = false;
     Float radius = 0;    // r_N for this pass (world units)
@@ -72,21 +71,6 @@ LU_INLINE bool RegularizedConeMayReach(const Vec3f &p, const Vec3f &D, const Vec
     // 1 - cos(sigma + beta) = (1 - cos sigma) + cos sigma (1 - cos beta) + sin sigma sin beta.
     Float limit = oneMinusCosS + cosS * oneMinusCosB + sinS * sinB;
     return OneMinusCosBetween(D, pc / L) <= limit * Float(1.01) + Float(1e-7);
-}
-
-// MIS weights of the two techniques for the same path (power heuristic, beta = 2). Delta lights
-// have no implicit technique: pdfExplW = Infinity gives the regularized connection weight 1.
-LU_INLINE Float RegularizedExplicitWeight(Float pdfImplW, Float pdfExplW) {
-    if (pdfExplW == Infinity) return 1;
-    Float a = Sqr(pdfExplW), b = Sqr(pdfImplW);
-    if (b == Infinity) return 0;
-    return a + b > 0 ? a / (a + b) : 0;
-}
-LU_INLINE Float RegularizedImplicitWeight(Float pdfImplW, Float pdfExplW) {
-    if (pdfExplW == Infinity) return 0;
-    Float a = Sqr(pdfImplW), b = Sqr(pdfExplW);
-    if (a == Infinity) return 1;
-    return a + b > 0 ? a / (a + b) : 1;
 }
 
 }  // namespace lu

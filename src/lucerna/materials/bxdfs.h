@@ -5,6 +5,7 @@
 
 #include "lucerna/materials/random.h"
 #include "lucerna/materials/scattering.h"
+#include "lucerna/sampling/mis.h"
 #include "lucerna/sampling/warp.h"
 
 namespace lu {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "lucerna/scene/camera_build.h"
+#include "lucerna/scene/sampler_build.h"
 #include "lucerna/scene/build_internal.h"
 
 namespace lu {
@@ -153,7 +154,7 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     if (int64_t(xres) * yres > (int64_t(1) << 27))
         Fail(ParamLoc(p, "xresolution", f.loc), "film resolution " + std::to_string(xres) + "x" + std::to_string(yres) +
                                                     " is too large (at most 2^27 pixels)");
-    s.settings.outputFilename = p.GetOneString("filename", "");
+    s.outputFilename = p.GetOneString("filename", "");
     Float iso = Float(p.GetOneFloat("iso", 100));
     Float whiteBalance = Float(p.GetOneFloat("whitebalance", 0));
     std::string sensor = p.GetOneString("sensor", "cie1931");
@@ -259,25 +260,51 @@ void BuildFilter(BuildContext &ctx) {
     p.ReportUnused(ctx.diag, "PixelFilter " + Quoted(name));
 }
 
+// pbrt-v4's samplers and their parameters; the Sampler is built here, once, with all of them.
 void BuildSampler(BuildContext &ctx) {
     const SceneEntity &e = ctx.desc.sampler;
-    RenderSettings &rs = ctx.scene.settings;
+    HostScene &scene = ctx.scene;
+    RenderSettings &rs = scene.settings;
     const ParameterDictionary &p = e.params;
     std::string name = e.name.empty() ? "zsobol" : e.name;
     if (!OneOf(name, {"sobol", "zsobol", "paddedsobol", "independent", "halton", "pmj02bn", "stratified"}))
         Fail(e.loc, "unknown sampler type " + Quoted(name));
-    rs.sampler = name;
+    scene.stats.samplerName = name;
+    SamplerOptions options;
+    int spp = 0;
     if (name == "stratified") {
-        int xs = p.GetOneInt("xsamples", 4), ys = p.GetOneInt("ysamples", 4);
-        (void)p.GetOneBool("jitter", true);
-        if (xs <= 0 || ys <= 0) Fail(e.loc, "stratified sampler: \"xsamples\" and \"ysamples\" must be positive");
-        rs.spp = xs * ys;
+        options.xSamples = p.GetOneInt("xsamples", 4);
+        options.ySamples = p.GetOneInt("ysamples", 4);
+        options.jitter = p.GetOneBool("jitter", true);
+        if (options.xSamples <= 0 || options.ySamples <= 0)
+            Fail(e.loc, "stratified sampler: \"xsamples\" and \"ysamples\" must be positive");
+        spp = options.xSamples * options.ySamples;
     } else {
-        rs.spp = p.GetOneInt("pixelsamples", 16);
-        if (rs.spp <= 0) Fail(ParamLoc(p, "pixelsamples", e.loc), "\"pixelsamples\" must be positive");
+        spp = p.GetOneInt("pixelsamples", 16);
+        if (spp <= 0) Fail(ParamLoc(p, "pixelsamples", e.loc), "\"pixelsamples\" must be positive");
+        if (spp > (1 << 24)) Fail(ParamLoc(p, "pixelsamples", e.loc), "\"pixelsamples\" must be at most 2^24");
     }
-    rs.seed = p.GetOneInt("seed", 0);
-    if (OneOf(name, {"sobol", "zsobol", "paddedsobol", "halton"})) (void)p.GetOneString("randomization", "");
+    rs.spp = spp;
+    rs.seed = uint32_t(p.GetOneInt("seed", 0));
+    if (OneOf(name, {"sobol", "zsobol", "paddedsobol", "halton"})) {
+        FileLoc loc = ParamLoc(p, "randomization", e.loc);
+        options.randomization = p.GetOneString("randomization", "");
+        if (!OneOf(options.randomization, {"", "none", "permutedigits", "fastowen", "owen"}))
+            Fail(loc, "unknown randomization " + Quoted(options.randomization) +
+                          " (expected none, permutedigits, fastowen or owen)");
+        if (name == "halton" && options.randomization == "fastowen")
+            Fail(loc, "halton sampler: \"fastowen\" randomization is not available (pbrt-v4 refuses it too)");
+    }
+    if (OneOf(name, {"sobol", "halton", "pmj02bn"}))
+        ctx.diag.Unsupported(e.loc, "Sampler " + Quoted(name), "rendered with \"zsobol\" (same samples per pixel, seed and randomization)");
+    std::string report;
+    scene.sampler = MakeSampler(name, spp, int(rs.seed), scene.film.width, scene.film.height, options, &report);
+    for (size_t i = 0, j; i < report.size(); i = j + 1) {
+        j = report.find('\n', i);
+        if (j == std::string::npos) j = report.size();
+        std::string line = report.substr(i, j - i);
+        if (!line.empty()) ctx.diag.Warning(e.loc, line);
+    }
     p.ReportUnused(ctx.diag, "Sampler " + Quoted(name));
 }
 
@@ -285,27 +312,27 @@ void BuildIntegrator(BuildContext &ctx) {
     const SceneEntity &e = ctx.desc.integrator;
     RenderSettings &rs = ctx.scene.settings;
     const ParameterDictionary &p = e.params;
-    rs.integratorAsRead = e.name;
+    ctx.scene.stats.integratorAsRead = e.name;
     if (e.name.empty()) return;  // pbrt-v4's default "volpath": the same image as "path" without media
     rs.maxDepth = p.GetOneInt("maxdepth", 5);
     if (rs.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", e.loc), "\"maxdepth\" must not be negative");
     if (e.name == "path") {
-        rs.integrator = "path";
-        rs.regularize = p.GetOneBool("regularize", false);
-        if (rs.regularize)
+        rs.integrator = IntegratorKind::Path;
+        if (p.GetOneBool("regularize", false))
             ctx.diag.Unsupported(ParamLoc(p, "regularize", e.loc), "pbrt-v4's \"bool regularize\" (BSDF roughening)",
                                  "the unbiased path tracer is used");
         (void)p.GetOneString("lightsampler", "bvh");  // sampling choice only: Lucerna samples lights by power
     } else if (e.name == "regpath") {
-        rs.integrator = "regpath";
-        rs.regularize = true;
-        rs.regRadius = p.GetOneFloat("radius", -1);
+        rs.integrator = IntegratorKind::RegPath;
+        rs.regRadius = p.GetOneFloat("radius", 0);
         rs.regLambda = p.GetOneFloat("lambda", 1.0 / 6);
-        rs.regAngle = p.GetOneFloat("angle", -1);
-        if (rs.regLambda < 0) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must not be negative");
+        rs.regAngle = p.GetOneFloat("angle", 2);
+        if (p.Has("radius") && !(rs.regRadius > 0)) Fail(ParamLoc(p, "radius", e.loc), "\"radius\" must be positive");
+        if (!(rs.regLambda >= 0 && rs.regLambda <= 1)) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must be in [0, 1]");
+        if (!(rs.regAngle > 0 && rs.regAngle <= 90)) Fail(ParamLoc(p, "angle", e.loc), "\"angle\" must be in (0, 90] degrees");
     } else if (OneOf(e.name, {"volpath", "bdpt", "mlt", "sppm", "lightpath", "simplepath", "simplevolpath", "randomwalk"})) {
         ctx.diag.Unsupported(e.loc, "Integrator " + Quoted(e.name), "rendered with Lucerna's \"path\" (same maxdepth); paths through specular surfaces to point, spot or tiny lights need --integrator regpath");
-        rs.integrator = "path";
+        rs.integrator = IntegratorKind::Path;
         MarkAllUsed(p);  // its other parameters (radius, photons, ...) have no "path" equivalent
     } else if (OneOf(e.name, {"ambientocclusion", "aov", "function"})) {
         FailUnsupported(e.loc, "Integrator " + Quoted(e.name));
@@ -342,6 +369,9 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
     BuildShapes(ctx);
     BuildLights(ctx);
     FinishLights(ctx);
+    // regpath's default r0 (chosen by bench/reg_radius.sh, see docs/regularization.md).
+    if (!(scene->settings.regRadius > 0))
+        scene->settings.regRadius = scene->bounds.Empty() ? 0.01 : 0.04 * Length(scene->bounds.Diagonal());
     return scene;
 }
 

@@ -9,23 +9,12 @@
 #include <vector>
 
 #include "lucerna/core/scene_data.h"
+#include "lucerna/sampling/sampler.h"
 #include "lucerna/scene/description.h"
+#include "lucerna/scene/render_settings.h"
 #include "lucerna/spectra/registry.h"
 
 namespace lu {
-
-// Rendering options from the Integrator / Sampler / Film directives; the CLI may override them.
-struct RenderSettings {
-    std::string integrator = "path";    // "path" or "regpath" (others are substituted by "path")
-    std::string integratorAsRead;       // the Integrator directive's name ("" when absent)
-    int maxDepth = 5;
-    bool regularize = false;            // "bool regularize" of "path"; true for "regpath"
-    double regRadius = -1, regLambda = 1.0 / 6, regAngle = -1;  // "regpath": radius, lambda, angle (degrees)
-    std::string sampler = "zsobol";     // sobol, zsobol, independent, halton, pmj02bn, stratified, paddedsobol
-    int spp = 16;                       // "pixelsamples" (stratified: xsamples * ysamples)
-    int seed = 0;                       // Sampler "seed"
-    std::string outputFilename;         // Film "filename" ("" when absent)
-};
 
 // What `lucerna info` reports. Type names are pbrt-v4's ("trianglemesh", "conductor", ...).
 struct SceneStats {
@@ -40,6 +29,8 @@ struct SceneStats {
     double fov = 90;                             // degrees, on the shorter image axis (pbrt-v4)
     Vec3f cameraPosition, cameraDirection;       // render (= world) space
     std::string filterType = "gaussian";
+    std::string integratorAsRead;                // the Integrator directive's name ("" when absent)
+    std::string samplerName = "zsobol";          // the Sampler directive's (pbrt-v4's default: zsobol)
 };
 
 // Owns every array the SceneView spans point into.
@@ -47,7 +38,9 @@ class HostScene {
   public:
     SceneView View() const;
 
-    RenderSettings settings;
+    RenderSettings settings;   // as the scene's Integrator and Sampler directives set them (r0 resolved)
+    Sampler sampler;           // the Sampler directive with all its options (seed: settings.seed)
+    std::string outputFilename;   // Film "filename" ("" when absent)
     SceneStats stats;
     SpectrumRegistry spectra;
     Bounds3f bounds;

@@ -42,9 +42,7 @@ inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width
     else {
         s.kind = SamplerKind::ZSobol;
         roundZSobol = false;
-        if (name == "sobol" || name == "halton" || name == "pmj02bn")
-            note("sampler \"" + name + "\" is not implemented; using \"zsobol\" instead");
-        else
+        if (name != "sobol" && name != "halton" && name != "pmj02bn")   // those: the caller reports the substitution
             note("unknown sampler \"" + name + "\"; using \"zsobol\" instead");
     }
 

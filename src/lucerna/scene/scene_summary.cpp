@@ -38,10 +38,11 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
       << ", direction " << Vec(st.cameraDirection) << "\n";
     o << "film: imaging ratio " << Fmt("%.6g", s.film.imagingRatio) << ", filter " << st.filterType
       << Fmt(" (radius %.6g x %.6g)", s.filter.radiusX, s.filter.radiusY) << "\n";
-    o << "integrator: " << (rs.integratorAsRead.empty() ? std::string("(none given)") : rs.integratorAsRead)
-      << " -> " << rs.integrator << ", maxdepth " << rs.maxDepth << "\n";
-    o << "sampler: " << rs.sampler << ", " << rs.spp << " spp, seed " << rs.seed << "\n";
-    if (!rs.outputFilename.empty()) o << "output: " << rs.outputFilename << "\n";
+    o << "integrator: " << (st.integratorAsRead.empty() ? std::string("(none given)") : st.integratorAsRead) << " -> "
+      << IntegratorName(rs.integrator) << ", maxdepth " << rs.maxDepth << "\n";
+    o << "sampler: " << st.samplerName << ", " << rs.spp << " spp, seed " << rs.seed << "\n";
+    o << "settings: " << DescribeRenderSettings(rs) << "\n";
+    if (!s.outputFilename.empty()) o << "output: " << s.outputFilename << "\n";
     o << "shapes: " << Counts(st.shapesByType) << "\n";
     o << "triangles: " << st.triangles << "\n";
     o << "lights: " << Counts(st.lightsByType) << "\n";

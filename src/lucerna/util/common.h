@@ -46,13 +46,6 @@ LU_INLINE Float Radians(Float deg) { return (Pi / 180) * deg; }
 LU_INLINE Float Degrees(Float rad) { return (180 / Pi) * rad; }
 LU_INLINE bool IsFinite(Float v) { return std::isfinite(v); }
 
-// Power heuristic (beta = 2) for two techniques given their pdfs in the same measure.
-LU_INLINE Float PowerHeuristic(Float pdfA, Float pdfB) {
-    Float a = pdfA * pdfA, b = pdfB * pdfB;
-    if (a == Infinity) return 1;
-    return a + b > 0 ? a / (a + b) : 0;
-}
-
 // Evaluates a polynomial c[0] + c[1] t + ... by Horner's rule.
 template <int N>
 LU_INLINE Float EvaluatePolynomial(Float t, const Float (&c)[N]) {

@@ -1,13 +1,16 @@
-// Lucerna CPU backend: progressive rendering over image tiles with oneTBB; one pass is one
-// sample per pixel; results depend only on the seed and pass index, never on the thread count.
+// Lucerna CPU backend: each pass over 16x16-pixel tiles with oneTBB, through the shared pass
+// driver (render/pass_driver.h); rays by Embree, or by the shared BVH traversal that the CUDA
+// kernel runs (settings.cpuTracer). Results depend only on the seed and the pass index, never on
+// the thread count.
 #pragma once
 
-#include "lucerna/render/render_job.h"
+#include "lucerna/render/pass_driver.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu {
 
-// Renders passes film.passes .. job.spp-1 (so a resumed film continues where it stopped).
-RenderStats RenderCPU(const HostScene &scene, const RenderJob &job, FilmAccumulator &film, const PassCallback &onPass = {});
+// Renders passes film.passes .. settings.spp - 1 (resizing an empty film to the scene's resolution).
+RenderStats RenderCPU(const HostScene &scene, const RenderSettings &settings, FilmAccumulator &film,
+                      const RenderControl &control = {});
 
 }  // namespace lu

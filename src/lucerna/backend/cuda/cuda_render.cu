@@ -1,6 +1,6 @@
 // Lucerna CUDA backend: the path-tracing megakernel. One thread renders one sample of one pixel
-// per pass through the shared integrator (integrators/path.h) over the shared BVH traversal
-// (geometry/bvh_traverse.h); the film write and NaN guard are those of backend/cpu/cpu_render.cpp.
+// per pass through the shared per-pixel body (RenderPixelSample, integrators/path.h) over the
+// shared BVH traversal (geometry/bvh_traverse.h), exactly what the CPU backend runs per pixel.
 #include <cuda_runtime.h>
 
 #include <string>
@@ -8,7 +8,6 @@
 #include "lucerna/backend/cuda/device_buffer.h"
 #include "lucerna/backend/cuda/path_kernel.h"
 #include "lucerna/geometry/bvh_traverse.h"
-#include "lucerna/spectrum/color.h"
 
 namespace lu {
 
@@ -30,48 +29,27 @@ __device__ inline unsigned long long WarpMin(unsigned long long v) {
 __global__ void __launch_bounds__(kBlockX * kBlockY)
 PathKernel(const __grid_constant__ SceneView scene, const __grid_constant__ PathKernelArgs args) {
     int x = blockIdx.x * kBlockX + threadIdx.x, y = blockIdx.y * kBlockY + threadIdx.y;
-    PathStats st;
-    unsigned long long rejected = 0, firstKey = ~0ull;
+    PassCounters c;
     if (x < args.width && y < args.height) {
-        Sampler sampler = args.sampler;
         BVHTracer tracer{args.bvh, &scene};
-        CameraSampleResult cs = RenderSample(x, y, args.passIndex, sampler, scene, tracer, args.ps, st);
-        Float xyz[3];
-        SensorXYZ(cs.L, cs.lambda, scene.spectra, scene.film.imagingRatio, xyz);
-        float4 out = make_float4(0, 0, 0, 0);
-        // The CPU backend's NaN guard: the sample is kept off the film and counted.
-        bool ok = IsFinite(xyz[0]) && IsFinite(xyz[1]) && IsFinite(xyz[2]) && IsFinite(cs.filterWeight) &&
-                  cs.L.MinValue() >= 0;
-        if (!ok) {
-            rejected = 1;
-            unsigned long long depth = (unsigned long long)Min(Max(cs.depth, 0), (1 << PathDepthBits) - 1);
-            firstKey = ((unsigned long long)y * args.width + x) << PathDepthBits | depth;
-        } else {
-            // pbrt-v4 RGBFilm: clamp the sample's largest component to maxComponentValue.
-            Float m = Max(xyz[0], Max(xyz[1], xyz[2]));
-            if (m > scene.film.maxComponentValue)
-                for (Float &c : xyz) c *= scene.film.maxComponentValue / m;
-            out = make_float4(cs.filterWeight * xyz[0], cs.filterWeight * xyz[1], cs.filterWeight * xyz[2], cs.filterWeight);
-        }
-        reinterpret_cast<float4 *>(args.xyzw)[size_t(y) * args.width + x] = out;
+        float xyzw[4];
+        RenderPixelSample(x, y, args.passIndex, args.sampler, scene, tracer, args.ps, xyzw, c);
+        reinterpret_cast<float4 *>(args.xyzw)[size_t(y) * args.width + x] = make_float4(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
     }
-    // ---- Statistics: warp reductions, one atomic per warp and counter ----
-    unsigned long long rays = WarpSum((unsigned long long)st.rays);
-    unsigned long long shadow = WarpSum((unsigned long long)st.shadowRays);
-    unsigned long long reg = WarpSum((unsigned long long)st.regConnections);
-    unsigned long long rej = WarpSum(rejected);
-    unsigned long long first = WarpMin(firstKey);
-    double regE = WarpSum(double(st.regEnergy)), totalE = WarpSum(double(st.totalEnergy));
+    // ---- Counters: warp reductions, one atomic per warp and counter ----
+    unsigned long long rays = WarpSum(c.rays), shadow = WarpSum(c.shadowRays), reg = WarpSum(c.regConnections);
+    unsigned long long rej = WarpSum(c.rejected), first = WarpMin(c.firstRejected);
+    double regE = WarpSum(c.regEnergy), totalE = WarpSum(c.totalEnergy);
     if (((threadIdx.y * kBlockX + threadIdx.x) & 31) == 0) {
-        PathPassCounters *c = args.counters;
-        if (rays) atomicAdd(&c->rays, rays);
-        if (shadow) atomicAdd(&c->shadowRays, shadow);
-        if (reg) atomicAdd(&c->regConnections, reg);
-        if (regE != 0) atomicAdd(&c->regEnergy, regE);
-        if (totalE != 0) atomicAdd(&c->totalEnergy, totalE);
+        PassCounters *out = args.counters;
+        if (rays) atomicAdd(&out->rays, rays);
+        if (shadow) atomicAdd(&out->shadowRays, shadow);
+        if (reg) atomicAdd(&out->regConnections, reg);
+        if (regE != 0) atomicAdd(&out->regEnergy, regE);
+        if (totalE != 0) atomicAdd(&out->totalEnergy, totalE);
         if (rej) {
-            atomicAdd(&c->rejected, rej);
-            atomicMin(&c->firstRejected, first);
+            atomicAdd(&out->rejected, rej);
+            atomicMin(&out->firstRejected, first);
         }
     }
 }

@@ -8,22 +8,14 @@
 
 namespace lu {
 
-// Per-pass counters, reduced on the device (one atomic per warp and counter).
-struct PathPassCounters {
-    unsigned long long rays = 0, shadowRays = 0, regConnections = 0, rejected = 0;
-    unsigned long long firstRejected = ~0ull;   // (y * width + x) << PathDepthBits | min(depth, 2^PathDepthBits - 1)
-    double regEnergy = 0, totalEnergy = 0;
-};
-constexpr int PathDepthBits = 24;
-
 struct PathKernelArgs {
     BVHView bvh;
-    Sampler sampler;           // MakeSampler's result; each thread starts its pixel sample from a copy
-    PathSettings ps;           // with this pass's regularization
+    Sampler sampler;           // the render's sampler; each thread starts its pixel sample from a copy
+    PathSettings ps;           // this pass's
     uint32_t passIndex = 0;    // = the sample index of every pixel
     int width = 0, height = 0;
     float *xyzw = nullptr;     // device pass buffer, 4 floats per pixel (PassBuffer's layout)
-    PathPassCounters *counters = nullptr;   // device, reset by the caller
+    PassCounters *counters = nullptr;   // device, reset by the caller
 };
 
 // Enqueues one pass of the megakernel on `stream` (a cudaStream_t); throws CudaError if the

@@ -1,0 +1,69 @@
+// Lucerna: multiple importance sampling of the path integrator in one place: the weight of each
+// technique for a path it sampled, and the light pick the explicit techniques share (Veach 1997,
+// ch. 9; the regularized pair after Bogolepov et al., see docs/regularization.md). PDFs are named
+// by measure: pdfW is solid angle at the vertex that connects, pdfA area at the light point; the
+// two pdfs given to one weight always share a measure.
+#pragma once
+
+#include "lucerna/integrators/regularization.h"
+#include "lucerna/lights/lights.h"
+#include "lucerna/sampling/mis.h"
+
+namespace lu {
+
+// Which unbiased techniques estimate direct light (tests compare them; renders use MIS).
+enum class LightStrategy : uint8_t { MIS, NEEOnly, BSDFOnly };
+
+// ---- Weights ----
+
+// Next-event estimation at a non-specular vertex against BSDF sampling of the same direction.
+// Delta lights have no BSDF-sampling partner (the caller skips the weight: it is 1).
+LU_INLINE Float LightSampleWeight(Float pdfLightW, Float pdfBsdfW) { return PowerHeuristic(pdfLightW, pdfBsdfW); }
+
+// BSDF sampling that hit an emitter after a non-specular vertex, against next-event estimation.
+LU_INLINE Float BSDFHitWeight(LightStrategy s, Float pdfBsdfW, Float pdfLightW) {
+    if (s == LightStrategy::NEEOnly) return 0;
+    if (s == LightStrategy::BSDFOnly) return 1;
+    return PowerHeuristic(pdfBsdfW, pdfLightW);
+}
+
+// The regularized connection at a specular vertex (explicit, biased) against the implicit
+// technique, BSDF sampling of the Dirac lobe that hits the emitter, whose pdf for the comparison
+// is the cone kernel's: pdfConeW = ConePdfW(...) (the ratio of the two pdfs is the same in area
+// measure at the light point: both convert with cos theta_z / d^2). Delta lights have no implicit
+// technique: pdfLightW = Infinity gives the connection weight 1 and the hit weight 0.
+LU_INLINE Float RegularizedConnectionWeight(Float pdfConeW, Float pdfLightW) {
+    if (pdfLightW == Infinity) return 1;
+    Float a = Sqr(pdfLightW), b = Sqr(pdfConeW);
+    if (b == Infinity) return 0;
+    return a + b > 0 ? a / (a + b) : 0;
+}
+LU_INLINE Float RegularizedHitWeight(Float pdfConeW, Float pdfLightW) {
+    if (pdfLightW == Infinity) return 0;
+    Float a = Sqr(pdfConeW), b = Sqr(pdfLightW);
+    if (a == Infinity) return 1;
+    return a + b > 0 ? a / (a + b) : 1;
+}
+
+// ---- The light pick of the explicit techniques ----
+
+struct LightPick {
+    uint32_t light = NoIndex;
+    Float pmf = 0;
+};
+
+// Chooses a light (power light sampler); light == NoIndex when the scene has none.
+LU_INLINE LightPick PickLight(const SceneView &scene, Float u) {
+    LightPick pick;
+    pick.light = SampleLight(scene, u, &pick.pmf);
+    return pick;
+}
+
+// A point on the picked light seen from ctx: false when the light gives nothing there.
+// pdfLightW of the sample = pick.pmf * ls->pdf (ls->pdf is the light's own solid-angle pdf).
+LU_INLINE bool SampleLightPoint(const SceneView &scene, const Light &light, const LightSampleContext &ctx, Vec2f u,
+                                const SampledWavelengths &lambda, LightLiSample *ls) {
+    return SampleLi(light, scene, ctx, u, lambda, ls) && ls->pdf != 0 && !ls->L.IsBlack();
+}
+
+}  // namespace lu

@@ -1,0 +1,184 @@
+// Lucerna: the sampling techniques of the path integrator, one function each (after Tungsten's
+// TraceBase): next-event estimation at non-specular vertices, the regularized connection at
+// specular vertices, BSDF sampling of the next direction, and the weight of an emitter that BSDF
+// sampling hits. Their MIS weights come from integrators/mis.h. A new technique goes here: its
+// function, its call in SampleDirect, and its pdf in EmitterHitWeight.
+// Backends supply a Tracer with  bool Intersect(const Ray &, HitRecord *) const;  bool Occluded(const Ray &) const;
+#pragma once
+
+#include "lucerna/core/interaction.h"
+#include "lucerna/integrators/mis.h"
+#include "lucerna/integrators/stats.h"
+#include "lucerna/materials/bsdf.h"
+#include "lucerna/sampling/sampler.h"
+
+namespace lu {
+
+// What the per-path code needs of the settings in one pass (host: render/settings.h).
+struct PathSettings {
+    int maxDepth = 5;
+    LightStrategy strategy = LightStrategy::MIS;
+    RegularizationParams reg;   // this pass's kernel
+};
+
+// Shadow ray from p (offset along n towards the light) to the point pLight (or to infinity along wi).
+LU_INLINE Ray SpawnShadowRay(const Vec3f &p, const Vec3f &n, const Vec3f &wi, Float distance, const Vec3f &pLight) {
+    Ray r;
+    r.o = OffsetRayOrigin(p, n, wi);
+    if (distance == Infinity) {
+        r.d = wi;
+        r.tMax = Infinity;
+    } else {
+        Vec3f target = pLight;
+        r.d = target - r.o;
+        r.tMax = 1 - 1e-4f;   // the light surface itself is excluded
+    }
+    return r;
+}
+
+LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
+    LightSampleContext ctx;
+    ctx.p = si.p;
+    ctx.n = si.n;
+    ctx.ns = si.ns;
+    return ctx;
+}
+
+// ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd) ----
+
+// One light sample at a non-specular vertex, MIS-weighted against BSDF sampling.
+template <typename Tracer>
+LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
+                               Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st,
+                               LightStrategy strategy = LightStrategy::MIS) {
+    Float uLight = sampler.Get1D();
+    Vec2f u2 = sampler.Get2D();
+    LightPick pick = PickLight(scene, uLight);
+    if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
+    const Light &light = scene.lights[pick.light];
+    LightLiSample ls;
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, &ls)) return SampledSpectrum(0);
+    SampledSpectrum f = bsdf.f(si.wo, ls.wi) * AbsDot(ls.wi, si.ns);
+    if (f.IsBlack()) return SampledSpectrum(0);
+    Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
+    ++st.rays; ++st.shadowRays;
+    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    Float pdfLightW = pick.pmf * ls.pdf;
+    if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
+    Float pdfBsdfW = bsdf.PDF(si.wo, ls.wi);
+    return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+}
+
+// ---- The regularized connection (integrators/regularization.h) ----
+
+// One light sample at a specular vertex, tested against the cone of every Dirac lobe, weighted
+// against the implicit technique. A light that no lobe's cone can reach is not sampled (same
+// random numbers consumed, same result).
+template <typename Tracer>
+LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
+                                        Sampler &sampler, const SceneView &scene, const Tracer &tracer,
+                                        const RegularizationParams &rp, PathStats &st) {
+    Float uLight = sampler.Get1D();
+    Vec2f u2 = sampler.Get2D();
+    LightPick pick = PickLight(scene, uLight);
+    if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
+    const Light &light = scene.lights[pick.light];
+    SpecularLobe lobes[2];
+    int n = bsdf.SpecularLobes(si.wo, lobes);
+    if (light.boundRadius >= 0) {
+        bool reachable = false;
+        for (int i = 0; i < n; ++i)
+            reachable |= RegularizedConeMayReach(si.p, lobes[i].wi, light.boundCenter, light.boundRadius, rp.radius);
+        if (!reachable) return SampledSpectrum(0);
+    }
+    LightLiSample ls;
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, &ls)) return SampledSpectrum(0);
+    Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
+    Float pdfConeW = ConePdfW(oneMinusCos);
+    SampledSpectrum sum(0);
+    for (int i = 0; i < n; ++i) {
+        if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
+        sum += lobes[i].weight;
+    }
+    if (sum.IsBlack()) return SampledSpectrum(0);
+    Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
+    ++st.rays; ++st.shadowRays;
+    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
+    Float w = RegularizedConnectionWeight(pdfConeW, pdfLightW);
+    // f_reg |cos| / p = weight * phi / pdf; for delta lights the "pdf" is the pmf alone.
+    Float pSample = pick.pmf * ls.pdf;
+    SampledSpectrum c = sum * ls.L * (w * pdfConeW / pSample);
+    ++st.regConnections;
+    return c;
+}
+
+// ---- The explicit techniques at one vertex ----
+
+// Direct light at vertex si by every explicit technique that applies there: NEE at non-specular
+// vertices, the regularized connection at specular ones (when the pass regularizes). Returns false
+// when none applies; *regularized tells which one ran.
+template <typename Tracer>
+LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const SampledWavelengths &lambda,
+                        Sampler &sampler, const SceneView &scene, const Tracer &tracer, const PathSettings &ps,
+                        PathStats &st, SampledSpectrum *Ld, bool *regularized) {
+    *regularized = false;
+    if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
+        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
+        return true;
+    }
+    if (ps.reg.enabled) {
+        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, st);
+        *regularized = true;
+        return true;
+    }
+    return false;
+}
+
+// ---- BSDF sampling, and the emitters it hits ----
+
+// The vertex a BSDF-sampled ray left from, as the emitter it hits needs it for MIS.
+struct ScatterVertex {
+    LightSampleContext ctx;
+    Float pdfBsdfW = 1;        // pdf of the sampled direction (proportional samples: the BSDF's PDF)
+    bool camera = true;        // the ray is a camera ray: nothing else can sample what it hits
+    bool specular = false;     // the sampled lobe is a Dirac lobe
+    bool regularized = false;  // ... and the regularized connection ran at that vertex
+};
+
+// MIS weight of emitter `li` hit along wi at pLight (normal nLight) from vertex v, against the
+// explicit technique that could have sampled it there. Infinite lights: pLight = v.ctx.p + wi,
+// nLight = -wi, atInfinity = true.
+LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
+                                 Vec3f nLight, bool atInfinity, const PathSettings &ps) {
+    if (v.camera || (v.specular && !v.regularized)) return 1;
+    Float pdfLightW = LightPMF(scene, li) * PDF_Li(scene.lights[li], scene, v.ctx, wi, pLight, nLight);
+    if (v.specular) {
+        Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
+        return RegularizedHitWeight(ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
+    }
+    return BSDFHitWeight(ps.strategy, v.pdfBsdfW, pdfLightW);
+}
+
+// Samples the BSDF at si for the next direction: updates the throughput beta, the radiance scale
+// for Russian roulette, the record v of this vertex and the ray. False when the path ends.
+LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsdf, bool regularized, Sampler &sampler,
+                                   SampledSpectrum &beta, Float &etaScale, ScatterVertex &v, Ray &ray) {
+    Float uc = sampler.Get1D();
+    Vec2f u2 = sampler.Get2D();
+    BSDFSample bs;
+    if (!bsdf.Sample_f(si.wo, uc, u2, &bs) || bs.pdf == 0 || bs.f.IsBlack()) return false;
+    beta *= bs.f * (AbsDot(bs.wi, si.ns) / bs.pdf);
+    v.pdfBsdfW = bs.pdfIsProportional ? bsdf.PDF(si.wo, bs.wi) : bs.pdf;
+    v.camera = false;
+    v.specular = bs.IsSpecular();
+    v.regularized = v.specular && regularized;
+    v.ctx = MakeLightContext(si);
+    if (bs.IsTransmission()) etaScale *= Sqr(bs.eta);
+    ray.o = OffsetRayOrigin(si.p, si.n, bs.wi);
+    ray.d = bs.wi;
+    ray.tMax = Infinity;
+    return true;
+}
+
+}  // namespace lu
