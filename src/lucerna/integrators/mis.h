@@ -59,11 +59,23 @@ LU_INLINE LightPick PickLight(const SceneView &scene, Float u) {
     return pick;
 }
 
+// Whether the explicit techniques use pbrt-v4's MIS-aware light sampling (allowIncompletePDF):
+// a uniform infinite light is then left to BSDF sampling alone, an image light is sampled where
+// it exceeds its average. Only when BSDF sampling is their MIS partner; the same flag on both
+// sides of every weight (light samples and emitter hits).
+LU_INLINE bool AllowIncompletePDF(LightStrategy s) { return s == LightStrategy::MIS; }
+
 // A point on the picked light seen from ctx: false when the light gives nothing there.
 // pdfLightW of the sample = pick.pmf * ls->pdf (ls->pdf is the light's own solid-angle pdf).
 LU_INLINE bool SampleLightPoint(const SceneView &scene, const Light &light, const LightSampleContext &ctx, Vec2f u,
-                                const SampledWavelengths &lambda, LightLiSample *ls) {
-    return SampleLi(light, scene, ctx, u, lambda, ls) && ls->pdf != 0 && !ls->L.IsBlack();
+                                const SampledWavelengths &lambda, bool allowIncompletePDF, LightLiSample *ls) {
+    return SampleLi(light, scene, ctx, u, lambda, ls, allowIncompletePDF) && ls->pdf != 0 && !ls->L.IsBlack();
+}
+
+// The light sampler's solid-angle pdf at ctx for emitter `li` seen along wi at pLight (normal nLight).
+LU_INLINE Float LightPdfW(const SceneView &scene, uint32_t li, const LightSampleContext &ctx, Vec3f wi, Vec3f pLight,
+                          Vec3f nLight, bool allowIncompletePDF) {
+    return LightPMF(scene, li) * PDF_Li(scene.lights[li], scene, ctx, wi, pLight, nLight, allowIncompletePDF);
 }
 
 }  // namespace lu

@@ -57,7 +57,8 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, &ls)) return SampledSpectrum(0);
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, AllowIncompletePDF(strategy), &ls))
+        return SampledSpectrum(0);
     SampledSpectrum f = bsdf.f(si.wo, ls.wi) * AbsDot(ls.wi, si.ns);
     if (f.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
@@ -77,7 +78,7 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
 template <typename Tracer>
 LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
                                         Sampler &sampler, const SceneView &scene, const Tracer &tracer,
-                                        const RegularizationParams &rp, PathStats &st) {
+                                        const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
@@ -92,7 +93,8 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
         if (!reachable) return SampledSpectrum(0);
     }
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, &ls)) return SampledSpectrum(0);
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, AllowIncompletePDF(strategy), &ls))
+        return SampledSpectrum(0);
     Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
     Float pdfConeW = ConePdfW(oneMinusCos);
     SampledSpectrum sum(0);
@@ -128,7 +130,7 @@ LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool spe
         return true;
     }
     if (ps.reg.enabled) {
-        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, st);
+        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, ps.strategy, st);
         *regularized = true;
         return true;
     }
@@ -152,7 +154,7 @@ struct ScatterVertex {
 LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
                                  Vec3f nLight, bool atInfinity, const PathSettings &ps) {
     if (v.camera || (v.specular && !v.regularized)) return 1;
-    Float pdfLightW = LightPMF(scene, li) * PDF_Li(scene.lights[li], scene, v.ctx, wi, pLight, nLight);
+    Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
         return RegularizedHitWeight(ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
