@@ -64,7 +64,10 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             if (sampler.Get1D() < q) break;
             beta /= 1 - q;
         }
-        if (!beta.IsFinite()) break;
+        if (!beta.IsFinite()) {   // a NaN or Inf from a material or light: reject the sample, do not hide it
+            st.invalid = true;
+            break;
+        }
     }
     if (terminalDepth) *terminalDepth = depth;
     st.totalEnergy += L.Average();
@@ -107,8 +110,10 @@ LU_HD void RenderPixelSample(int x, int y, uint32_t pass, const Sampler &base, c
     PathStats st;
     CameraSampleResult cs = RenderSample(x, y, pass, sampler, scene, tracer, ps, st);
     c.Add(st);
-    if (!WriteFilmSample(cs.L, cs.lambda, cs.filterWeight, scene, xyzw))
+    if (!WriteFilmSample(cs.L, cs.lambda, cs.filterWeight, scene, xyzw) || st.invalid) {
+        xyzw[0] = xyzw[1] = xyzw[2] = xyzw[3] = 0;
         c.Reject(RejectedSampleKey(x, y, scene.film.width, cs.depth));
+    }
 }
 
 }  // namespace lu

@@ -14,6 +14,7 @@ struct PathStats {
     uint64_t regConnections = 0;     // regularized connections that contributed
     Float regEnergy = 0;             // luminance-like sum (average over wavelengths) they carried
     Float totalEnergy = 0;           // same for the whole path
+    bool invalid = false;            // the path's throughput became non-finite: the sample is rejected
 };
 
 // A rejected sample (non-finite or negative value kept off the film) identified by its pixel and
