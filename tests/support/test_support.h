@@ -1,8 +1,10 @@
-// Lucerna test support: paths to shared data and a chi-square goodness-of-fit helper.
+// Lucerna test support: paths to shared data; the chi-square harness (support/chi2.h).
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "support/chi2.h"
 
 namespace lu::test {
 
@@ -12,10 +14,5 @@ std::string SharedPath(const std::string &rel);
 std::string SourcePath(const std::string &rel);
 // A fresh temporary directory for one test.
 std::string TempDir(const std::string &name);
-
-// Pearson chi-square test of observed counts against expected counts (cells with expected < 5
-// are pooled, as Mitsuba's chi2 harness does). Returns the p-value; *message gets a summary.
-double ChiSquarePValue(const std::vector<double> &observed, const std::vector<double> &expected,
-                       std::string *message = nullptr);
 
 }  // namespace lu::test
