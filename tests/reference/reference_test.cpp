@@ -1,4 +1,4 @@
-// Lucerna reference tests: whole images against pbrt-v4 references in ../shared/refs, with a
+// Lucerna reference tests: whole images against pbrt-v4 references in data/refs, with a
 // tolerance derived from the measured noise. K independent renders give every pixel a sample
 // variance; block means (8x8) of the average image then have a known standard error, and the
 // z-score of (ours - reference) per block and channel must look like noise: at most a small
