@@ -176,6 +176,17 @@ TEST(Cli, InterruptThenResumeIsBitIdentical) {
     EXPECT_TRUE(SameImage(ReadImage(dir + "/b.exr"), ReadImage(dir + "/full.exr")));
 }
 
+// Every subcommand is linked and registered (apps/commands.cpp has no stubs).
+TEST(Cli, HelpListsEveryCommand) {
+    ProcessResult r = RunProcess({kBin, "--help"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char *cmd : {"info", "render", "diff", "converge"}) {
+        ProcessResult sub = RunProcess({kBin, cmd, "--help"});
+        EXPECT_EQ(sub.exitCode, 0) << cmd << ": " << sub.output;
+        EXPECT_NE(r.output.find(std::string("\n  ") + cmd), std::string::npos) << cmd << " missing from\n" << r.output;
+    }
+}
+
 TEST(Cli, ConvergeWritesCsvReportAndFallingError) {
     // The scene and reference sit in a folder whose name JSON must escape (quote, backslash, tab).
     std::string dir = TempDir("cli_converge") + "/a \"quoted\" back\\slash\ttab";
