@@ -1,12 +1,18 @@
 // Lucerna CLI: `lucerna converge` — render each integrator progressively (K runs with different
 // seeds), compute the error against a reference at checkpoints without re-rendering (powers of
 // two in spp and twelve points in time), and write DIR/convergence.csv, final.csv, run.json,
-// images at equal time and equal spp, then the plots and index.html (scripts/*.py). The
-// directory layout is specified in docs/convergence.md.
+// images at equal time and equal spp, then the plots and index.html (scripts/*.py, run without a
+// shell). The directory layout is specified in docs/convergence.md.
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +20,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/json.h"
 #include "apps/render_common.h"
 #include "lucerna/image/image.h"
 #include "lucerna/image/metrics.h"
@@ -22,12 +29,14 @@
 #define LUCERNA_SOURCE_DIR "."
 #endif
 
+extern char **environ;
+
 namespace lu::app {
 
 namespace {
 
 struct ConvergeArgs {
-    std::string scene, ref, integrators = "path,regpath", res, outDir;
+    std::string scene, ref, integrators = "path,regpath", res, outDir, python;
     double time = 0;
     int spp = 0, runs = 1;
     long long seed = 0;
@@ -71,6 +80,24 @@ void WriteBudgetImages(const std::string &dir, const std::string &integ, const s
                        {"lucerna.seconds", Num(s.seconds)}, {"lucerna.run", "0"}, {"lucerna.seed", std::to_string(seed)}};
     WriteEXR(dir + "/" + integ + "_" + budget + ".exr", s.image, meta);
     WritePNG(dir + "/" + integ + "_" + budget + ".png", s.image);
+}
+
+// Runs argv (argv[0] looked up on PATH) without a shell and waits; "" on success, else what failed.
+std::string RunProgram(const std::vector<std::string> &argv) {
+    std::vector<char *> args;
+    for (const std::string &s : argv) args.push_back(const_cast<char *>(s.c_str()));
+    args.push_back(nullptr);
+    std::string what;
+    for (const std::string &s : argv) what += (what.empty() ? "" : " ") + s;
+    pid_t pid = 0;
+    int err = posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ);
+    if (err != 0) return "could not run " + what + ": " + std::strerror(err);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) return "lost " + what + ": " + std::strerror(errno);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+    if (WIFEXITED(status)) return what + " exited with status " + std::to_string(WEXITSTATUS(status));
+    return what + " was killed by signal " + std::to_string(WTERMSIG(status));
 }
 
 int RunConverge(const ConvergeArgs &a) {
@@ -237,21 +264,37 @@ int RunConverge(const ConvergeArgs &a) {
         std::time_t now = std::time(nullptr);
         char date[64];
         std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-        std::ofstream j(a.outDir + "/run.json");
-        j << "{\"scene\": \"" << a.scene << "\", \"reference\": \"" << a.ref << "\", \"width\": " << width
-          << ", \"height\": " << height << ", \"excluded_pixels\": " << masked << ", \"time\": " << (a.time > 0 ? Num(a.time) : "null")
-          << ", \"spp\": " << (a.spp > 0 ? std::to_string(a.spp) : "null") << ", \"runs\": " << a.runs
-          << ", \"integrators\": [";
-        for (size_t i = 0; i < integrators.size(); ++i) j << (i ? ", " : "") << '"' << integrators[i] << '"';
-        j << "], \"backend\": \"" << deviceName << "\", \"device\": \"" << deviceName << "\", \"date\": \"" << date << "\"}\n";
+        JsonObject j;
+        j.Add("scene", a.scene).Add("reference", a.ref).Add("width", width).Add("height", height);
+        j.Add("excluded_pixels", masked);
+        if (a.time > 0) j.Add("time", a.time); else j.Add("time", nullptr);
+        if (a.spp > 0) j.Add("spp", a.spp); else j.Add("spp", nullptr);
+        j.Add("runs", a.runs).Add("integrators", integrators).Add("backend", deviceName).Add("device", deviceName);
+        j.Add("date", date);
+        std::ofstream(a.outDir + "/run.json") << j.Str() << "\n";
     }
-    if (!a.noReport) {
-        std::string scripts = std::string(LUCERNA_SOURCE_DIR) + "/scripts";
-        std::string py = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-        std::string cmd = py + " '" + scripts + "/plot_convergence.py' '" + a.outDir + "' && " + py + " '" + scripts +
-                          "/make_report.py' '" + a.outDir + "'";
-        if (std::system(cmd.c_str()) != 0)
-            std::fprintf(stderr, "lucerna converge: warning: the plots/report could not be made (%s)\n", cmd.c_str());
+    if (a.noReport) {
+        std::printf("converge: wrote %s/convergence.csv, final.csv\n", a.outDir.c_str());
+        return ExitOk;
+    }
+    // The report scripts need matplotlib and numpy; the interpreter: --python, else
+    // $LUCERNA_PYTHON, else python3 on PATH.
+    std::string python = a.python;
+    if (python.empty()) {
+        const char *env = std::getenv("LUCERNA_PYTHON");
+        python = env && *env ? env : "python3";
+    }
+    std::string scripts = std::string(LUCERNA_SOURCE_DIR) + "/scripts";
+    for (const char *script : {"plot_convergence.py", "make_report.py"}) {
+        std::string failure = RunProgram({python, scripts + "/" + script, a.outDir});
+        if (!failure.empty()) {
+            std::fprintf(stderr,
+                         "lucerna converge: error: the report failed: %s (the scripts need matplotlib and numpy: "
+                         "scripts/setup.sh; choose the interpreter with --python or LUCERNA_PYTHON). "
+                         "%s/convergence.csv and final.csv are written.\n",
+                         failure.c_str(), a.outDir.c_str());
+            return ExitInternal;
+        }
     }
     std::printf("converge: wrote %s/convergence.csv, final.csv, index.html\n", a.outDir.c_str());
     return ExitOk;
@@ -272,6 +315,8 @@ void RegisterConverge(CLI::App &app, CommandTable &table) {
     sub->add_option("--seed", args->seed, "Seed of run 0 (run k uses seed + k)")->check(CLI::Range(0LL, 4294967295LL));
     AddSettingOptions(sub, &args->settings, {"integrator", "seed", "spp", "time", "progress"});
     sub->add_flag("--no-report", args->noReport, "Skip the plots and index.html");
+    sub->add_option("--python", args->python,
+                    "Python interpreter with matplotlib for the report (default: $LUCERNA_PYTHON, else python3 on PATH)");
     sub->add_option("--exclude-above", args->excludeAbove,
                     "Exclude pixels (and their 8 neighbours) where the reference exceeds this value: directly visible "
                     "emitters (default 100; 0 keeps every pixel)");

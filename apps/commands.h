@@ -21,7 +21,7 @@ struct CommandTable {
     }
 };
 
-// Each cmd_*.cpp defines one of these; RegisterCommands (commands.cpp) calls those that exist.
+// Each cmd_*.cpp defines one of these; RegisterCommands (commands.cpp) calls every one.
 void RegisterInfo(CLI::App &app, CommandTable &table);      // apps/cmd_info.cpp
 void RegisterRender(CLI::App &app, CommandTable &table);    // apps/cmd_render.cpp
 void RegisterDiff(CLI::App &app, CommandTable &table);      // apps/cmd_diff.cpp

@@ -4,7 +4,7 @@
 # Usage: bench/instr_count.sh [BIN] [RES] [SPP]   (defaults: build-perf/lucerna 32x32 4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SHARED=${LUCERNA_SHARED_DIR:-../shared}
+DATA=data   # the shared scenes (data/README.md)
 BIN=${1:-build-perf/lucerna}
 RES=${2:-32x32}
 SPP=${3:-4}
@@ -15,7 +15,7 @@ printf "%-42s %9s %5s %14s %12s\n" scene res spp instructions instr/sample
 for scene in bitterli-cornell-box/scene-v4 bitterli-veach-mis/scene-v4 bitterli-cornell-box/ref-cornell-box \
              bitterli-veach-mis/ref-veach-mis; do
   valgrind --tool=callgrind --callgrind-out-file="$out/cg.out" --toggle-collect='tbb::detail::r1::execute_and_wait*' \
-    "$BIN" render "$SHARED/scenes/$scene.pbrt" --res "$RES" --spp "$SPP" --threads 1 -q \
+    "$BIN" render "$DATA/scenes/$scene.pbrt" --res "$RES" --spp "$SPP" --threads 1 -q \
     -o "$out/img.exr" >/dev/null 2>"$out/log"
   ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$out/log")
   w=${RES%x*}; h=${RES#*x}

@@ -39,7 +39,7 @@ CornellData &Cornell() {
         diag.quiet = true;
         BuildOptions opts;
         opts.resX = opts.resY = 64;
-        d->host = LoadScene(LUCERNA_SHARED_DIR "/scenes/bitterli-cornell-box/scene-v4.pbrt", diag, opts);
+        d->host = LoadScene(LUCERNA_DATA_DIR "/scenes/bitterli-cornell-box/scene-v4.pbrt", diag, opts);
         d->view = d->host->View();
         d->embree = std::make_unique<EmbreeScene>(d->view);
         EmbreeTracer tracer{d->embree.get()};

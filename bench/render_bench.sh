@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Lucerna CPU render benchmark: renders fixed shared scenes at the pbrt-v4 reference resolution
 # with fixed spp, maxdepth and 2 threads, and prints samples/s and rays/s next to pbrt-v4's own
-# throughput on the same machine class (computed from ../shared/refs/NAME.txt: W*H*spp / wall s,
+# throughput on the same machine class (computed from data/refs/NAME.txt: W*H*spp / wall s,
 # only where that reference was rendered with pbrt-v4's `path` integrator).
 # Two rows per scene: "scene" is the scene's own file (scene-v4*.pbrt: its sampler, e.g. "sobol",
 # which Lucerna renders with ZSobol); "pbrt-ref" is the exact file pbrt-v4 rendered for the
@@ -13,7 +13,7 @@
 # Usage: bench/render_bench.sh [SPP] [THREADS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SHARED=${LUCERNA_SHARED_DIR:-../shared}
+DATA=data   # the shared scenes and references (data/README.md)
 SPP=${1:-64}
 THREADS=${2:-2}
 BIN=${LUCERNA_BIN:-build/lucerna}
@@ -25,14 +25,14 @@ SCENES=${SCENES:-cornell-box water-caustic veach-mis volumetric-caustic bs_c}
 printf "%-22s %-9s %-9s %5s %9s %8s %12s %12s %14s %8s %s\n" scene variant res spp maxdepth seconds samples/s rays/s pbrt-samples/s ratio "(min-max over REPEAT runs)"
 for name in $SCENES; do
  for variant in $VARIANTS; do
-  txt="$SHARED/refs/$name.txt"
+  txt="$DATA/refs/$name.txt"
   scene=$(sed -n 's/^scene variant: shared\/\(.*\)\/ref-\(.*\)\.pbrt.*/\1/p' "$txt")
   if [ "$variant" = pbrt-ref ]; then
     file=$(sed -n 's/^scene variant: shared\/\([^ ]*\.pbrt\).*/\1/p' "$txt")
-    file="$SHARED/$file"
+    file="$DATA/$file"
     [ -f "$file" ] || continue
   else
-    file=$(ls "$SHARED/$scene"/scene-v4-nomedium.pbrt "$SHARED/$scene"/scene-v4.pbrt "$SHARED/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1 || true)
+    file=$(ls "$DATA/$scene"/scene-v4-nomedium.pbrt "$DATA/$scene"/scene-v4.pbrt "$DATA/$scene"/smallvcm-$name.pbrt 2>/dev/null | head -1 || true)
   fi
   res=$(sed -n 's/^resolution: \([0-9]*x[0-9]*\).*/\1/p' "$txt")
   maxdepth=$(sed -n 's/.*"integer maxdepth" \[ \([0-9]*\) \].*/\1/p' "$txt")

@@ -9,7 +9,7 @@ set -euo pipefail
 secs=${1:?usage: fuzz/run.sh SECONDS [JOBS]}
 jobs=${2:-1}
 root=$(cd "$(dirname "$0")/.." && pwd)
-shared=${LUCERNA_SHARED_DIR:-$root/../shared}
+shared=$root/data   # the shared scenes (data/README.md)
 build=$root/build-fuzz
 
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DLUCERNA_FUZZ=ON -DLUCERNA_CUDA=OFF \

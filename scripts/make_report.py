@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Lucerna convergence report: DIR (written by `lucerna converge`) -> DIR/index.html.
 
 The page shows the headline result, the table of final errors (with the squared bias / variance
@@ -454,7 +454,7 @@ def benchmarks(md_path, assets, dirs):
                 shutil.copyfile(src, dst)
                 plots.append((name, plot[5:-4], os.path.relpath(dst, md_dir).replace(os.sep, "/")))
     lines.append("")
-    lines.append("relMSE = mean (v−r)²/(r²+0.01) over pixels and R,G,B against the pbrt-v4 reference in /work/shared/refs; "
+    lines.append("relMSE = mean (v−r)²/(r²+0.01) over pixels and R,G,B against the pbrt-v4 reference in data/refs; "
                  "errors are means over runs (the mean MSE estimates the expected MSE; the median and range show the spread of "
                  "heavy-tailed runs); RMSE ÷ path = √(MSE / MSE of path); bias² share = bias²/MSE (docs/convergence.md).")
     lines.append("")
@@ -491,7 +491,7 @@ def main(argv=None):
         import matplotlib  # noqa: F401
         import numpy  # noqa: F401
     except ImportError:
-        sys.exit("make_report.py: matplotlib/numpy missing; run with /usr/bin/python3 (Debian python3-matplotlib)")
+        sys.exit("make_report.py: matplotlib/numpy missing in " + sys.executable + "; install python3-matplotlib (scripts/setup.sh) or run a python3 that has them (LUCERNA_PYTHON)")
     if args.benchmarks:
         assets = args.assets or os.path.join(os.path.dirname(os.path.abspath(args.benchmarks)), "benchmarks")
         benchmarks(args.benchmarks, assets, args.dirs)

@@ -1,10 +1,10 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Lucerna convergence plots: DIR/convergence.csv -> DIR/plot_spp.png and DIR/plot_time.png.
 
 Log-log error vs samples per pixel and error vs seconds, one curve per integrator (the median over
 runs), the spread over runs drawn as a min/max band, and a dashed 1/N guide (the rate of an
-unbiased Monte Carlo estimator). File layout: docs/convergence.md. Needs Debian's
-python3-matplotlib: run with /usr/bin/python3.
+unbiased Monte Carlo estimator). File layout: docs/convergence.md. Needs matplotlib (Debian's
+python3-matplotlib, scripts/setup.sh): run it with a python3 that has it.
 
 usage: plot_convergence.py DIR [--metrics relmse,mse] [--title TEXT]
 """
@@ -148,7 +148,7 @@ def main(argv=None):
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        sys.exit("plot_convergence.py: matplotlib is missing; run with /usr/bin/python3 (Debian python3-matplotlib)")
+        sys.exit("plot_convergence.py: matplotlib is missing in " + sys.executable + "; install python3-matplotlib (scripts/setup.sh) or run a python3 that has it (LUCERNA_PYTHON)")
     csv_path = os.path.join(args.dir, "convergence.csv")
     if not os.path.exists(csv_path):
         sys.exit(f"plot_convergence.py: {csv_path} does not exist")

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Lucerna benchmark scene generator: a displaced terrain of N x N quads as 2 N^2 triangles (binary
 PLY with smooth normals) under a sun and a sky, as a pbrt-v4 scene. With the default N = 724 it
 has 1,048,352 triangles, so its BVH (48-byte prim refs alone are 50 MB, plus 64-byte nodes) exceeds the

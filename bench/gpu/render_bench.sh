@@ -7,11 +7,11 @@
 # Usage: bench/gpu/render_bench.sh [BUILD_DIR]   (configure BUILD_DIR with -DLUCERNA_CUDA=ON for GPU numbers)
 # Environment: RES (512x512), SPP (16), CPU_SPP (default SPP; fewer keeps slow CPUs short, rates stay
 # comparable), INTEGRATOR (path or regpath), TERRAIN_N (724: 2 N^2 triangles), SCENES (space-separated
-# subset of the shared scene files, paths under shared/scenes/).
+# subset of the shared scene files, paths under data/scenes/).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=${1:-build}
-SHARED=${LUCERNA_SHARED_DIR:-../shared}
+DATA=data   # the shared scenes (data/README.md)
 RES=${RES:-512x512}
 SPP=${SPP:-16}
 CPU_SPP=${CPU_SPP:-$SPP}
@@ -21,12 +21,12 @@ BIN="$BUILD/lucerna"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-/usr/bin/python3 bench/gpu/make_terrain.py "$tmp/terrain" "${TERRAIN_N:-724}" >/dev/null
+python3 bench/gpu/make_terrain.py "$tmp/terrain" "${TERRAIN_N:-724}" >/dev/null
 SCENES=${SCENES:-"bitterli-cornell-box/scene-v4.pbrt bitterli-veach-mis/scene-v4.pbrt bitterli-veach-bidir/scene-v4.pbrt
   bitterli-volumetric-caustic/scene-v4-nomedium.pbrt bitterli-water-caustic/scene-v4.pbrt pbrt-v3-caustic-glass/scene-v4.pbrt
   smallvcm-cornell/smallvcm-bs_c.pbrt smallvcm-cornell/smallvcm-bs_p.pbrt"}
 files=()
-for s in $SCENES; do files+=("$SHARED/scenes/$s"); done
+for s in $SCENES; do files+=("$DATA/scenes/$s"); done
 files+=("$tmp/terrain/terrain.pbrt")
 
 # Is there a usable GPU? (`--device cuda` exits 2 with the reason when not.)
@@ -42,7 +42,7 @@ echo "res $RES, integrator $INTEGRATOR, spp: gpu $SPP, cpu $CPU_SPP; maxdepth fr
 printf "%-44s %9s %9s %9s %9s %9s %9s %8s\n" scene cpu-Ms/s cpu-Mr/s r/sample gpu-Ms/s gpu-Mr/s r/sample gpu/cpu
 
 for f in "${files[@]}"; do
-  name=${f#"$SHARED/scenes/"}
+  name=${f#"$DATA/scenes/"}
   [[ $f == "$tmp"/* ]] && name="generated terrain (1M triangles)"
   "$BIN" render "$f" --res "$RES" --spp "$CPU_SPP" --integrator "$INTEGRATOR" --device cpu --seed 1 -q \
       -o "$tmp/cpu.exr" --stats-json "$tmp/cpu.json" >/dev/null 2>&1 || { echo "$name: CPU render failed"; continue; }
@@ -51,7 +51,7 @@ for f in "${files[@]}"; do
     "$BIN" render "$f" --res "$RES" --spp "$SPP" --integrator "$INTEGRATOR" --device cuda --seed 1 -q \
         -o "$tmp/gpu.exr" --stats-json "$tmp/gpu.json" >/dev/null 2>"$tmp/gpu.err" || { echo "$name: GPU render failed: $(tail -1 "$tmp/gpu.err")"; }
   fi
-  /usr/bin/python3 - "$name" "$tmp/cpu.json" "$tmp/gpu.json" <<'PY'
+  python3 - "$name" "$tmp/cpu.json" "$tmp/gpu.json" <<'PY'
 import json, os, sys
 name, cpuPath, gpuPath = sys.argv[1:]
 def rates(p):

@@ -21,7 +21,7 @@ namespace lu::test {
 
 namespace {
 
-const std::string kBin = std::string(LUCERNA_BINARY_DIR) + "/lucerna";
+const std::string kBin = LucernaBinary();
 
 // Runs the binary with arguments; returns its exit status (or 128 + signal).
 int RunLucerna(const std::vector<std::string> &args, bool quietStderr = true, pid_t *pidOut = nullptr, bool wait = true) {
@@ -176,13 +176,27 @@ TEST(Cli, InterruptThenResumeIsBitIdentical) {
     EXPECT_TRUE(SameImage(ReadImage(dir + "/b.exr"), ReadImage(dir + "/full.exr")));
 }
 
+// Every subcommand is linked and registered (apps/commands.cpp has no stubs).
+TEST(Cli, HelpListsEveryCommand) {
+    ProcessResult r = RunProcess({kBin, "--help"});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char *cmd : {"info", "render", "diff", "converge"}) {
+        ProcessResult sub = RunProcess({kBin, cmd, "--help"});
+        EXPECT_EQ(sub.exitCode, 0) << cmd << ": " << sub.output;
+        EXPECT_NE(r.output.find(std::string("\n  ") + cmd), std::string::npos) << cmd << " missing from\n" << r.output;
+    }
+}
+
 TEST(Cli, ConvergeWritesCsvReportAndFallingError) {
-    std::string dir = TempDir("cli_converge");
+    // The scene and reference sit in a folder whose name JSON must escape (quote, backslash, tab).
+    std::string dir = TempDir("cli_converge") + "/a \"quoted\" back\\slash\ttab";
+    std::filesystem::create_directories(dir);
     std::string scene = WriteScene(dir, 32, 8);
     // A converged reference made by the renderer itself (path converges on this scene).
     ASSERT_EQ(RunLucerna({"render", scene, "--spp", "1024", "--seed", "77", "-o", dir + "/ref.exr"}), 0);
-    ASSERT_EQ(RunLucerna({"converge", scene, "--ref", dir + "/ref.exr", "--spp", "64", "--runs", "2", "--integrators",
-                   "path,regpath", "-o", dir + "/out"}), 0);
+    ProcessResult conv = RunProcess({kBin, "converge", scene, "--ref", dir + "/ref.exr", "--spp", "64", "--runs", "2",
+                                     "--integrators", "path,regpath", "-o", dir + "/out", "--python", PythonExe()});
+    ASSERT_EQ(conv.exitCode, 0) << conv.output;
     std::ifstream csv(dir + "/out/convergence.csv");
     std::string line;
     std::getline(csv, line);
@@ -200,8 +214,16 @@ TEST(Cli, ConvergeWritesCsvReportAndFallingError) {
     }
     EXPECT_GT(first, 0);
     EXPECT_LT(last, first / 8) << "error must fall with spp for path";
+    // run.json is valid JSON holding the paths exactly (read back by Python's json module).
+    ProcessResult js = RunProcess({PythonExe(), "-c",
+                                   "import json, sys; d = json.load(open(sys.argv[1])); "
+                                   "assert d['scene'] == sys.argv[2], d['scene']; assert d['reference'] == sys.argv[3]; "
+                                   "assert d['integrators'] == ['path', 'regpath']; assert d['spp'] == 64; "
+                                   "assert d['time'] is None; print('ok')",
+                                   dir + "/out/run.json", scene, dir + "/ref.exr"});
+    EXPECT_EQ(js.exitCode, 0) << js.output;
     std::ifstream html(dir + "/out/index.html");
-    if (!html) GTEST_SKIP() << "no index.html (matplotlib missing?)";
+    ASSERT_TRUE(html.good()) << "no index.html: the report scripts failed\n" << conv.output;
     std::string s((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
     size_t pos = 0;
     int refs = 0;
@@ -212,6 +234,32 @@ TEST(Cli, ConvergeWritesCsvReportAndFallingError) {
         ++refs;
     }
     EXPECT_GE(refs, 4);
+    // The report names no absolute path (the scene's folder, the temporary folder).
+    EXPECT_EQ(s.find(std::filesystem::temp_directory_path().string()), std::string::npos);
+}
+
+// A report script that cannot run or fails makes converge fail with a message naming it.
+TEST(Cli, ConvergeReportsScriptFailure) {
+    std::string dir = TempDir("cli_converge_fail");
+    std::string scene = WriteScene(dir, 16, 2);
+    ASSERT_EQ(RunLucerna({"render", scene, "--spp", "4", "-o", dir + "/ref.exr"}), 0);
+    auto converge = [&](const std::string &python, const std::string &out) {
+        return RunProcess({kBin, "converge", scene, "--ref", dir + "/ref.exr", "--spp", "2", "--integrators", "path",
+                           "-o", dir + "/" + out, "--python", python});
+    };
+    ProcessResult missing = converge(dir + "/no-such-python", "a");
+    EXPECT_EQ(missing.exitCode, 1) << missing.output;
+    EXPECT_NE(missing.output.find("could not run " + dir + "/no-such-python"), std::string::npos) << missing.output;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/a/convergence.csv"));
+    ProcessResult failing = converge("false", "b");
+    EXPECT_EQ(failing.exitCode, 1) << failing.output;
+    EXPECT_NE(failing.output.find("plot_convergence.py " + dir + "/b exited with status 1"), std::string::npos)
+        << failing.output;
+    // Without the report nothing runs and nothing fails.
+    ProcessResult none = RunProcess({kBin, "converge", scene, "--ref", dir + "/ref.exr", "--spp", "2", "--integrators",
+                                     "path", "-o", dir + "/c", "--no-report", "--python", "false"});
+    EXPECT_EQ(none.exitCode, 0) << none.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/c/index.html"));
 }
 
 }  // namespace lu::test

@@ -1,8 +1,5 @@
-// Tests of the `lucerna diff` logic (image/diff.h) and, when it has been built, of the binary's
-// exit codes.
+// Tests of the `lucerna diff` logic (image/diff.h) and of the binary's exit codes.
 #include <gtest/gtest.h>
-
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
@@ -136,31 +133,29 @@ TEST(Diff, BlockMeansAndZTest) {
     EXPECT_NE(out.find("ztest pass"), std::string::npos) << out;  // one outlier among 16 pixels
 }
 
-// The built binary, when present beside the tests (build-image/lucerna).
+// The built binary (tests/CMakeLists.txt makes test_image depend on it): a missing binary or a
+// binary without its diff command fails here.
 TEST(Diff, BinaryExitCodes) {
-    std::string exe = std::string(LUCERNA_BINARY_DIR) + "/lucerna";
-    if (!std::filesystem::exists(exe)) GTEST_SKIP() << exe << " not built";
+    std::string exe = test::LucernaBinary();
+    ASSERT_TRUE(std::filesystem::exists(exe)) << exe << " not built";
     DiffFiles f;
-    auto run = [&](const std::string &args) {
-        std::string cmd = exe + " diff " + args + " > " + f.dir + "/out.txt 2>&1";
-        int status = std::system(cmd.c_str());
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::string out;
+    auto run = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), {exe, "diff"});
+        test::ProcessResult r = test::RunProcess(args);
+        out = r.output;
+        return r.exitCode;
     };
-    auto output = [&] {
-        std::ifstream in(f.dir + "/out.txt");
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    };
-    // A binary built before cmd_diff.cpp existed has no diff command: skip rather than fail.
-    if (run("--help") != 0) GTEST_SKIP() << "this lucerna binary has no diff command";
-    EXPECT_NE(output().find("relmse = (1/N) sum (v - r)^2 / (r^2 + 0.01)"), std::string::npos) << output();
-    EXPECT_EQ(run(f.image + " " + f.reference + " --metric MSE"), 0);
-    EXPECT_EQ(output(), "mse 0.0416666667\n");
-    EXPECT_EQ(run(f.image + " " + f.small), 2);
-    EXPECT_NE(output().find("sizes differ"), std::string::npos) << output();
-    EXPECT_EQ(run(f.image + " " + f.dir + "/missing.exr"), 2);
-    EXPECT_EQ(run(f.image + " " + f.reference + " --crop 0,0,100,100"), 2);
-    EXPECT_EQ(run(f.image + " " + f.reference + " --metric nonsense"), 2);
-    EXPECT_EQ(run(f.image), 2);
+    ASSERT_EQ(run({"--help"}), 0) << out;
+    EXPECT_NE(out.find("relmse = (1/N) sum (v - r)^2 / (r^2 + 0.01)"), std::string::npos) << out;
+    EXPECT_EQ(run({f.image, f.reference, "--metric", "MSE"}), 0) << out;
+    EXPECT_EQ(out, "mse 0.0416666667\n");
+    EXPECT_EQ(run({f.image, f.small}), 2);
+    EXPECT_NE(out.find("sizes differ"), std::string::npos) << out;
+    EXPECT_EQ(run({f.image, f.dir + "/missing.exr"}), 2);
+    EXPECT_EQ(run({f.image, f.reference, "--crop", "0,0,100,100"}), 2);
+    EXPECT_EQ(run({f.image, f.reference, "--metric", "nonsense"}), 2);
+    EXPECT_EQ(run({f.image}), 2);
 }
 
 }  // namespace

@@ -1,8 +1,7 @@
 // Tests of scripts/plot_convergence.py and scripts/make_report.py on a synthetic convergence
-// directory (the layout of docs/convergence.md). Skipped when /usr/bin/python3 lacks matplotlib.
+// directory (the layout of docs/convergence.md), run by the python3 with matplotlib that CMake
+// found (LUCERNA_PYTHON); matplotlib is a declared dependency: without it these tests fail.
 #include <gtest/gtest.h>
-
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -20,9 +19,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int Shell(const std::string &cmd) {
-    int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// Runs scripts/NAME with the arguments; returns the exit status (output in *out).
+int Script(const std::string &name, std::vector<std::string> args, std::string *out = nullptr) {
+    args.insert(args.begin(), {test::PythonExe(), test::SourcePath("scripts/" + name)});
+    test::ProcessResult r = test::RunProcess(args);
+    if (out) *out = r.output;
+    return r.exitCode;
 }
 
 std::string ReadText(const std::string &path) {
@@ -30,8 +32,11 @@ std::string ReadText(const std::string &path) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-bool HaveMatplotlib() {
-    return Shell("/usr/bin/python3 -c 'import matplotlib, numpy' > /dev/null 2>&1") == 0;
+::testing::AssertionResult HaveMatplotlib() {
+    test::ProcessResult r = test::RunProcess({test::PythonExe(), "-c", "import matplotlib, numpy"});
+    if (r.exitCode == 0) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << test::PythonExe() << " cannot import matplotlib and numpy (install "
+                                         << "python3-matplotlib: scripts/setup.sh, then reconfigure): " << r.output;
 }
 
 // A convergence directory as `lucerna converge` writes it: 2 integrators x 3 runs.
@@ -77,18 +82,23 @@ std::string MakeConvergenceDir(const std::string &name, bool withFinal) {
     return dir;
 }
 
+TEST(ReportScripts, PythonHasMatplotlib) { EXPECT_TRUE(HaveMatplotlib()); }
+
 TEST(ReportScripts, PlotsAndReportReferenceExistingFiles) {
-    if (!HaveMatplotlib()) GTEST_SKIP() << "/usr/bin/python3 has no matplotlib";
+    ASSERT_TRUE(HaveMatplotlib());
     std::string dir = MakeConvergenceDir("report_scripts", true);
-    std::string scripts = test::SourcePath("scripts");
-    ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/plot_convergence.py " + dir + " > /dev/null"), 0);
+    std::string out;
+    ASSERT_EQ(Script("plot_convergence.py", {dir}, &out), 0) << out;
     for (const char *plot : {"plot_spp.png", "plot_time.png"}) {
         Image p = ReadImage(dir + "/" + plot);  // a real PNG
         EXPECT_GT(p.width, 300) << plot;
     }
-    ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py " + dir + " > /dev/null"), 0);
+    ASSERT_EQ(Script("make_report.py", {dir}, &out), 0) << out;
     std::string html = ReadText(dir + "/index.html");
     ASSERT_FALSE(html.empty());
+    // No absolute path in the report: run.json's scene and reference are named by their file names.
+    EXPECT_EQ(html.find("/x/"), std::string::npos);
+    EXPECT_EQ(html.find(dir), std::string::npos);
     std::regex src("src=\"([^\"]+)\"");
     int images = 0;
     for (auto it = std::sregex_iterator(html.begin(), html.end(), src); it != std::sregex_iterator(); ++it) {
@@ -113,10 +123,10 @@ TEST(ReportScripts, PlotsAndReportReferenceExistingFiles) {
 }
 
 TEST(ReportScripts, WorksWithoutFinalCsvAndUpdatesBenchmarks) {
-    if (!HaveMatplotlib()) GTEST_SKIP() << "/usr/bin/python3 has no matplotlib";
+    ASSERT_TRUE(HaveMatplotlib());
     std::string dir = MakeConvergenceDir("report_minimal", false);
-    std::string scripts = test::SourcePath("scripts");
-    ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py " + dir + " > /dev/null"), 0);
+    std::string out;
+    ASSERT_EQ(Script("make_report.py", {dir}, &out), 0) << out;
     std::string html = ReadText(dir + "/index.html");
     EXPECT_NE(html.find("Last checkpoint"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir + "/plot_time.png"));  // make_report ran the plot script
@@ -124,10 +134,12 @@ TEST(ReportScripts, WorksWithoutFinalCsvAndUpdatesBenchmarks) {
     std::string md = dir + "/benchmarks.md";
     std::ofstream(md) << "# Benchmarks\n\nintro\n\n<!-- BEGIN convergence (old) -->\nold\n<!-- END convergence -->\nafter\n";
     // The block between the markers is replaced (twice: the second run finds the first's markers).
-    ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py --benchmarks " + md + " " + dir + " > /dev/null"), 0);
-    ASSERT_EQ(Shell("/usr/bin/python3 " + scripts + "/make_report.py --benchmarks " + md + " " + dir + " > /dev/null"), 0);
+    ASSERT_EQ(Script("make_report.py", {"--benchmarks", md, dir}, &out), 0) << out;
+    ASSERT_EQ(Script("make_report.py", {"--benchmarks", md, dir}, &out), 0) << out;
     std::string text = ReadText(md);
-    std::string name = fs::path(dir).filename().string();   // TempDir's name: lucerna_test_report_minimal_PID
+    EXPECT_EQ(text.find(dir), std::string::npos) << "an absolute path in the benchmarks block";
+    EXPECT_NE(text.find("reference in data/refs"), std::string::npos) << text;
+    const std::string name = fs::path(dir).filename().string();  // the scene's name: the folder's (run.json has none)
     EXPECT_NE(text.find("| " + name + " |"), std::string::npos) << text;
     EXPECT_NE(text.find("intro"), std::string::npos);
     EXPECT_NE(text.find("after"), std::string::npos);
@@ -139,7 +151,8 @@ TEST(ReportScripts, WorksWithoutFinalCsvAndUpdatesBenchmarks) {
 
     // Bad input: a CSV without the required columns.
     std::ofstream(dir + "/convergence.csv") << "integrator,spp\npath,1\n";
-    EXPECT_NE(Shell("/usr/bin/python3 " + scripts + "/plot_convergence.py " + dir + " > /dev/null 2>&1"), 0);
+    EXPECT_NE(Script("plot_convergence.py", {dir}, &out), 0);
+    EXPECT_NE(out.find("missing columns"), std::string::npos) << out;
 }
 
 }  // namespace

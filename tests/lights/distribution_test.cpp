@@ -55,22 +55,40 @@ TEST(Distribution1D, ChiSquareAndDiscrete) {
     Distribution1D d = BuildDistribution1D(f.data(), uint32_t(f.size()), data);
     SceneView s = ViewOf(data);
     const int N = 100000;
-    std::vector<double> obs(f.size(), 0), obsDiscrete(f.size(), 0), expd(f.size());
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> U(0, 1);
-    for (int i = 0; i < N; ++i) {
+    // The continuous samples against the density f / integral (the function itself, not the
+    // distribution's pdf), and the discrete ones against f / sum.
+    auto density = [&](const std::vector<float> &g) {
+        double sum = 0;
+        for (float v : g) sum += v;
+        return [g, sum](const test::Chi2Point &p) {
+            return g[std::min(size_t(p.x * g.size()), g.size() - 1)] * g.size() / sum;
+        };
+    };
+    auto sample = [&](test::Chi2Point *p) {
         Float pdf;
-        Float x = SampleDistribution1D(s, d, U(rng), &pdf);
-        obs[Min(int(x * f.size()), int(f.size()) - 1)] += 1;
+        p->x = SampleDistribution1D(s, d, U(rng), &pdf);
+        return true;
+    };
+    test::Chi2Options opts;
+    opts.samples = N;
+    EXPECT_TRUE(test::Chi2Accepts(test::Chi2SampleTest(test::IntervalDomain(0, 1, 12), sample, density(f), opts)));
+    // The harness rejects a function with one bin 20% off.
+    std::vector<float> g = f;
+    g[3] *= 1.2f;
+    rng.seed(3);
+    EXPECT_TRUE(test::Chi2Rejects(test::Chi2SampleTest(test::IntervalDomain(0, 1, 12), sample, density(g), opts)));
+
+    std::vector<double> obsDiscrete(f.size(), 0), expd(f.size());
+    for (int i = 0; i < N; ++i) {
         Float pmf;
         uint32_t k = SampleDiscrete1D(s, d, U(rng), &pmf);
         EXPECT_NEAR(pmf, f[k] / 20.0f, 1e-6f);
         obsDiscrete[k] += 1;
     }
     for (size_t i = 0; i < f.size(); ++i) expd[i] = N * f[i] / 20.0;
-    std::string msg;
-    EXPECT_GT(test::ChiSquarePValue(obs, expd, &msg), 1e-4) << msg;
-    EXPECT_GT(test::ChiSquarePValue(obsDiscrete, expd, &msg), 1e-4) << msg;
+    EXPECT_TRUE(test::Chi2Accepts(test::Chi2Counts(obsDiscrete, expd)));
 }
 
 TEST(Distribution1D, AllZeroIsUniformWithZeroPdf) {
@@ -132,51 +150,45 @@ TEST(Distribution2D, PdfSampleInvertRoundTrip) {
     }
 }
 
-TEST(Distribution2D, ChiSquare) {
-    int nx = 12, ny = 7;
-    std::vector<float> f = TestImage(nx, ny);
+// Samples of the distribution of f against the density f / mean (the function, piecewise
+// constant on its nx x ny cells), on a histogram of 2x2 cells per function cell.
+test::Chi2Result Distribution2DChi2(const std::vector<float> &f, const std::vector<float> &g, int nx, int ny) {
     std::vector<Float> data;
     Distribution2D d = BuildDistribution2D(f.data(), nx, ny, data);
     SceneView s = ViewOf(data);
-    double sum = 0;
-    for (float v : f) sum += v;
-    const int N = 200000;
-    std::vector<double> obs(f.size(), 0), expd(f.size());
+    double mean = 0;
+    for (float v : g) mean += v;
+    mean /= g.size();
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> U(0, 1);
-    for (int i = 0; i < N; ++i) {
+    auto sample = [&](test::Chi2Point *p) {
         Float pdf;
-        Vec2f p = SampleDistribution2D(s, d, Vec2f(U(rng), U(rng)), &pdf);
-        int ix = Min(int(p.x * nx), nx - 1), iy = Min(int(p.y * ny), ny - 1);
-        obs[size_t(iy) * nx + ix] += 1;
-    }
-    for (size_t i = 0; i < f.size(); ++i) expd[i] = N * f[i] / sum;
-    std::string msg;
-    EXPECT_GT(test::ChiSquarePValue(obs, expd, &msg), 1e-4) << msg;
+        Vec2f q = SampleDistribution2D(s, d, Vec2f(U(rng), U(rng)), &pdf);
+        *p = {q.x, q.y, 0};
+        return true;
+    };
+    auto density = [&](const test::Chi2Point &p) {
+        int ix = std::min(int(p.x * nx), nx - 1), iy = std::min(int(p.y * ny), ny - 1);
+        return g[size_t(iy) * nx + ix] / mean;
+    };
+    test::Chi2Options opts;
+    opts.samples = 200000;
+    return test::Chi2SampleTest(test::RectDomain(0, 1, 0, 1, 2 * nx, 2 * ny), sample, density, opts);
+}
+
+TEST(Distribution2D, ChiSquare) {
+    int nx = 12, ny = 7;
+    std::vector<float> f = TestImage(nx, ny);
+    EXPECT_TRUE(test::Chi2Accepts(Distribution2DChi2(f, f, nx, ny)));
 }
 
 TEST(Distribution2D, ChiSquareDetectsWrongFunction) {
     // The harness must be able to fail: samples of f tested against a perturbed g.
     int nx = 12, ny = 7;
     std::vector<float> f = TestImage(nx, ny);
-    std::vector<Float> data;
-    Distribution2D d = BuildDistribution2D(f.data(), nx, ny, data);
-    SceneView s = ViewOf(data);
     std::vector<float> g = f;
     g[3] *= 1.3f;
-    double sum = 0;
-    for (float v : g) sum += v;
-    const int N = 200000;
-    std::vector<double> obs(f.size(), 0), expd(f.size());
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> U(0, 1);
-    for (int i = 0; i < N; ++i) {
-        Float pdf;
-        Vec2f p = SampleDistribution2D(s, d, Vec2f(U(rng), U(rng)), &pdf);
-        obs[size_t(Min(int(p.y * ny), ny - 1)) * nx + Min(int(p.x * nx), nx - 1)] += 1;
-    }
-    for (size_t i = 0; i < g.size(); ++i) expd[i] = N * g[i] / sum;
-    EXPECT_LT(test::ChiSquarePValue(obs, expd), 1e-4);
+    EXPECT_TRUE(test::Chi2Rejects(Distribution2DChi2(f, g, nx, ny)));
 }
 
 }  // namespace

@@ -209,99 +209,41 @@ Float DirectionPDF(const SceneView &s, uint32_t li, const LightSampleContext &ct
 // ---- Chi-square of SampleLi directions against PDF_Li over a cap of directions ----
 
 struct SamplingCheck {
-    double pValue = 0;
-    double pdfIntegral = 0;
+    test::Chi2Result chi2;   // the harness's result (support/chi2.h)
     int pdfMismatches = 0;   // samples whose ls.pdf disagrees with PDF_Li
-    int failures = 0;        // SampleLi returned false
-    std::string message;
 };
 
-// Cells cover the cap {w : dot(w, axis) >= cosCap} uniformly in solid angle (nT x nP). Expected
-// counts integrate the pdf per cell (refined where it varies); directions outside the cap form
-// one more cell with expected count 0.
+// The chi-square test (support/chi2.h) of SampleLi's directions against PDF_Li over the cap
+// {w : dot(w, axis) >= cosCap} (nT x nP cells of equal solid angle); directions outside the cap
+// reject. Samples SampleLi refuses are set aside and counted (chi2.failed): PDF_Li covers
+// directions where a sample may still be refused. pdfOverride replaces PDF_Li (negative tests).
 SamplingCheck CheckSampling(const SceneView &s, uint32_t li, const LightSampleContext &ctx, Vec3f axis, Float cosCap,
                             bool incomplete = false, int N = 100000, int nT = 20, int nP = 24,
-                            const std::function<Float(Vec3f)> &pdfOverride = nullptr) {
+                            const std::function<Float(Vec3f)> &pdfOverride = nullptr, double integralTol = 0.02) {
     SamplingCheck r;
-    Frame F = Frame::FromZ(Normalize(axis));
-    double capArea = 2 * Pi * (1 - double(cosCap));
-    auto dirOf = [&](double a, double b) {
-        double cosT = 1 - a * (1 - double(cosCap));
-        double sinT = std::sqrt(std::max(0.0, 1 - cosT * cosT));
-        double phi = 2 * Pi * b;
-        return F.FromLocal(Vec3f(Float(sinT * std::cos(phi)), Float(sinT * std::sin(phi)), Float(cosT)));
-    };
-    auto pdfOf = [&](Vec3f w) { return pdfOverride ? pdfOverride(w) : DirectionPDF(s, li, ctx, w, incomplete); };
-    std::vector<double> expected(nT * nP + 1, 0), observed(nT * nP + 1, 0);
-    // Mean pdf over cell (i, j) from k x k midpoints; *any is set if some point has pdf > 0.
-    auto integrate = [&](int i, int j, int k, bool *any, bool *varies) {
-        double sum = 0, mn = 1e300, mx = 0;
-        for (int a = 0; a < k; ++a)
-            for (int b = 0; b < k; ++b) {
-                double p = pdfOf(dirOf((i + (a + 0.5) / k) / nT, (j + (b + 0.5) / k) / nP));
-                sum += p;
-                mn = std::min(mn, p);
-                mx = std::max(mx, p);
-            }
-        if (any) *any = mx > 0;
-        if (varies) *varies = mx > 1.02 * mn;
-        return sum / (k * k) * capArea / (nT * nP);
-    };
-    std::vector<char> any(nT * nP), varies(nT * nP);
-    for (int i = 0; i < nT; ++i)
-        for (int j = 0; j < nP; ++j) {
-            bool a, v;
-            expected[i * nP + j] = integrate(i, j, 6, &a, &v);
-            any[i * nP + j] = a;
-            varies[i * nP + j] = v;
-        }
-    // Refine cells that vary or touch a cell with nonzero pdf (the silhouette may cross them).
-    auto nearNonzero = [&](int i, int j) {
-        for (int di = -1; di <= 1; ++di)
-            for (int dj = -1; dj <= 1; ++dj) {
-                int ii = i + di, jj = (j + dj + nP) % nP;
-                if (ii >= 0 && ii < nT && any[ii * nP + jj]) return true;
-            }
-        return false;
-    };
-    double total = 0;
-    for (int i = 0; i < nT; ++i)
-        for (int j = 0; j < nP; ++j) {
-            double &e = expected[i * nP + j];
-            bool near = nearNonzero(i, j);
-            if (varies[i * nP + j] || (near && !(e > 0))) e = integrate(i, j, 48, nullptr, nullptr);
-            total += e;
-            e *= N;
-            // A sliver of the light thinner than the refined grid: allow (pooled) samples there.
-            if (e == 0 && near) e = 1e-6;
-        }
-    r.pdfIntegral = total;
     std::mt19937 rng(1234 + li);
     std::uniform_real_distribution<float> U(0, 1);
     SampledWavelengths lambda = TestLambda();
     const Light &l = s.lights[li];
-    for (int n = 0; n < N; ++n) {
+    auto sample = [&](test::Chi2Point *p) {
         LightLiSample ls;
-        if (!SampleLi(l, s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls, incomplete)) {
-            ++r.failures;
-            continue;
-        }
+        if (!SampleLi(l, s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls, incomplete)) return false;
         if (!pdfOverride) {
-            Float p = PDF_Li(l, s, ctx, ls.wi, ls.pLight, ls.nLight, incomplete);
-            if (!(std::abs(p - ls.pdf) <= 1e-2f * ls.pdf)) ++r.pdfMismatches;
+            Float pdf = PDF_Li(l, s, ctx, ls.wi, ls.pLight, ls.nLight, incomplete);
+            if (!(std::abs(pdf - ls.pdf) <= 1e-2f * ls.pdf)) ++r.pdfMismatches;
         }
-        Vec3f w = F.ToLocal(ls.wi);
-        // 1 - cos(theta), robust near theta = 0: sin^2 / (1 + cos) for the upper hemisphere.
-        double xy2 = double(w.x) * w.x + double(w.y) * w.y;
-        double oneMinusCos = w.z > 0 ? xy2 / (1 + std::min(1.0, double(w.z))) : 1 - double(w.z);
-        double a = oneMinusCos / (1 - double(cosCap));
-        if (a > 1) { observed[nT * nP] += 1; continue; }
-        double phi = std::atan2(double(w.y), double(w.x));
-        if (phi < 0) phi += 2 * Pi;
-        int i = std::min(int(a * nT), nT - 1), j = std::min(int(phi / (2 * Pi) * nP), nP - 1);
-        observed[i * nP + j] += 1;
-    }
-    r.pValue = test::ChiSquarePValue(observed, expected, &r.message);
+        *p = {ls.wi.x, ls.wi.y, ls.wi.z};
+        return true;
+    };
+    auto pdf = [&](const test::Chi2Point &p) {
+        Vec3f w(Float(p.x), Float(p.y), Float(p.z));
+        return double(pdfOverride ? pdfOverride(w) : DirectionPDF(s, li, ctx, w, incomplete));
+    };
+    test::Chi2Options opts;
+    opts.samples = N;
+    opts.failuresInHistogram = false;
+    opts.integralTolerance = integralTol;
+    r.chi2 = test::Chi2SampleTest(test::CapDomain({axis.x, axis.y, axis.z}, cosCap, nT, nP), sample, pdf, opts);
     return r;
 }
 
@@ -315,8 +257,8 @@ Float CapFor(Vec3f p, Vec3f axis, std::initializer_list<Vec3f> pts) {
 // maxMismatches: image lights may disagree at texel seams where the uv -> direction -> uv round
 // trip changes texel (as in pbrt-v4).
 void ExpectGood(const SamplingCheck &r, double integralTol = 0.01, int maxMismatches = 0) {
-    EXPECT_GT(r.pValue, 1e-4) << r.message;
-    EXPECT_NEAR(r.pdfIntegral, 1.0, integralTol);
+    EXPECT_TRUE(test::Chi2Accepts(r.chi2));
+    EXPECT_NEAR(r.chi2.pdfIntegral, 1.0, integralTol) << r.chi2.message;
     EXPECT_LE(r.pdfMismatches, maxMismatches);
 }
 
@@ -354,7 +296,7 @@ TEST(TriangleLight, SamplingMatchesPdf) {
         Float cosCap = CapFor(tc.p, axis, {tc.a, tc.b, tc.c});
         SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap);
         ExpectGood(r, 0.02);
-        EXPECT_LT(r.failures, 100);
+        EXPECT_LT(r.chi2.failed, 100);
     }
 }
 
@@ -369,31 +311,31 @@ TEST(TriangleLight, HugeTriangleUsesUniformAreaSampling) {
     SceneView s = ts.View();
     LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
     ASSERT_GT(TriangleSolidAngle(GetTriangle(s, ts.meshes[0], 0), ctx.p), MaxSphericalSampleArea);
-    const int nI = 10, nJ = 5, N = 100000;
-    std::vector<double> obs(nI * nJ, 0), expd(nI * nJ);
-    for (int i = 0; i < nI; ++i) {
-        double lo = double(i) / nI, hi = double(i + 1) / nI;
-        double mass = (1 - lo) * (1 - lo) - (1 - hi) * (1 - hi);
-        for (int j = 0; j < nJ; ++j) expd[i * nJ + j] = N * mass / nJ;
-    }
+    // (b1, b2 / (1 - b1)) has density 2 (1 - b1) on the unit square.
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> U(0, 1);
     SampledWavelengths lambda = TestLambda();
-    int mismatches = 0;
-    for (int n = 0; n < N; ++n) {
+    int mismatches = 0, failures = 0;
+    auto sample = [&](test::Chi2Point *q) {
         LightLiSample ls;
-        ASSERT_TRUE(SampleLi(s.lights[li], s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls));
+        if (!SampleLi(s.lights[li], s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls)) {
+            ++failures;
+            return false;
+        }
         Float p = PDF_Li(s.lights[li], s, ctx, ls.wi, ls.pLight, ls.nLight);
         if (!(std::abs(p - ls.pdf) <= 1e-3f * ls.pdf)) ++mismatches;
         // Barycentrics of pLight (the triangle is in the plane z = 0.01).
         double b1 = (ls.pLight.x + 20) / 60, b2 = (ls.pLight.y + 20) / 60;
-        int i = std::min(int(b1 * nI), nI - 1);
-        int j = std::min(int(b2 / std::max(1e-9, 1 - b1) * nJ), nJ - 1);
-        obs[i * nJ + j] += 1;
-    }
+        *q = {b1, b2 / std::max(1e-9, 1 - b1), 0};
+        return true;
+    };
+    test::Chi2Options opts;
+    opts.samples = 100000;
+    test::Chi2Result r = test::Chi2SampleTest(test::RectDomain(0, 1, 0, 1, 10, 5), sample,
+                                              [](const test::Chi2Point &q) { return 2 * (1 - q.x); }, opts);
+    EXPECT_TRUE(test::Chi2Accepts(r));
+    EXPECT_EQ(failures, 0);
     EXPECT_EQ(mismatches, 0);
-    std::string msg;
-    EXPECT_GT(test::ChiSquarePValue(obs, expd, &msg), 1e-4) << msg;
 }
 
 TEST(TriangleLight, ChiSquareDetectsMissingWarp) {
@@ -409,7 +351,7 @@ TEST(TriangleLight, ChiSquareDetectsMissingWarp) {
     LightSampleContext noNormal{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     SamplingCheck r = CheckSampling(s, li, ctx, axis, CapFor({0, 0, 0}, axis, {a, b, c}), false, 100000, 20, 24,
                                     [&](Vec3f w) { return DirectionPDF(s, li, noNormal, w, false); });
-    EXPECT_LT(r.pValue, 1e-4) << r.message;
+    EXPECT_TRUE(test::Chi2Rejects(r.chi2));
 }
 
 TEST(TriangleLight, LMatchesIntersectedPoint) {
@@ -519,7 +461,7 @@ TEST(SphereLight, SamplingMatchesPdfOutsideAndInside) {
         }
         SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap);
         ExpectGood(r, 0.02);
-        EXPECT_EQ(r.failures, 0);
+        EXPECT_EQ(r.chi2.failed, 0);
     }
 }
 
@@ -622,7 +564,68 @@ TEST(ImageInfiniteLight, SamplingMatchesPdfBothDistributions) {
         SCOPED_TRACE(incomplete);
         SamplingCheck r = CheckSampling(s, li, ctx, Vec3f(0, 0, 1), -1, incomplete, 100000, 24, 32);
         ExpectGood(r, 0.005, 10);
-        EXPECT_EQ(r.failures, 0);
+        EXPECT_EQ(r.chi2.failed, 0);
+    }
+}
+
+// The same checks reject pdfs that are not the sampled ones (each a plausible bug): a sphere's
+// cone pdf for a 5% larger sphere, a disk's area-to-solid-angle conversion with the cosine
+// squared, an image light's pdf without its rotation, and the huge triangle's barycentrics
+// taken as uniform.
+TEST(LightSampling, ChiSquareRejectsWrongPdfs) {
+    {
+        TestScene ts;
+        Vec3f center(0.3f, 0.2f, 3);
+        uint32_t li = ts.AddAreaLight(ts.AddSphere(Translate(center), 1.f), 1.f);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+        Vec3f axis = Normalize(center);
+        Float cosMax = std::sqrt(1 - Sqr(1.05f) / LengthSquared(center));  // the larger sphere's cone
+        Float cosCap = 1 - 1.25f * (1 - cosMax);
+        SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap, false, 100000, 20, 24, [&](Vec3f w) {
+            return Dot(w, axis) >= cosMax ? Float(1 / (2 * Pi * (1 - cosMax))) : Float(0);
+        });
+        EXPECT_TRUE(test::Chi2Rejects(r.chi2)) << "sphere";
+    }
+    {
+        TestScene ts;
+        uint32_t li = ts.AddAreaLight(ts.AddDisk(Translate({0.2f, 0, 2}) * Rotate(Pi, Vec3f(1, 0, 0)), 0.8f), 1.5f);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0.2f, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+        Float cosCap = 1 - 1.25f * (1 - 2 / std::sqrt(4 + Sqr(0.8f)));
+        SamplingCheck r = CheckSampling(s, li, ctx, Vec3f(0, 0, 1), cosCap, false, 100000, 20, 24, [&](Vec3f w) {
+            return DirectionPDF(s, li, ctx, w, false) / std::abs(w.z);  // d^2 / (A cos^2)
+        }, 1.0);
+        EXPECT_TRUE(test::Chi2Rejects(r.chi2)) << "disk";
+    }
+    {
+        TestScene ts;
+        uint32_t li = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Rotate(0.9f, Vec3f(0.3f, 1, 0.2f)));
+        uint32_t unrotated = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Transform());
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        SamplingCheck r = CheckSampling(s, li, ctx, Vec3f(0, 0, 1), -1, false, 100000, 24, 32,
+                                        [&](Vec3f w) { return DirectionPDF(s, unrotated, ctx, w, false); });
+        EXPECT_TRUE(test::Chi2Rejects(r.chi2)) << "image light";
+    }
+    {
+        TestScene ts;
+        uint32_t li = ts.AddAreaLight(ts.AddTriangle({-20, -20, 0.01f}, {40, -20, 0.01f}, {-20, 40, 0.01f}, true), 1.f);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+        std::mt19937 rng(21);
+        std::uniform_real_distribution<float> U(0, 1);
+        SampledWavelengths lambda = TestLambda();
+        auto sample = [&](test::Chi2Point *q) {
+            LightLiSample ls;
+            if (!SampleLi(s.lights[li], s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls)) return false;
+            double b1 = (ls.pLight.x + 20) / 60, b2 = (ls.pLight.y + 20) / 60;
+            *q = {b1, b2 / std::max(1e-9, 1 - b1), 0};
+            return true;
+        };
+        test::Chi2Result r = test::Chi2SampleTest(test::RectDomain(0, 1, 0, 1, 10, 5), sample,
+                                                  [](const test::Chi2Point &) { return 1.0; });
+        EXPECT_TRUE(test::Chi2Rejects(r)) << "huge triangle";
     }
 }
 
@@ -771,8 +774,7 @@ TEST(LightSampler, PmfProportionalToPower) {
         obs[k] += 1;
     }
     for (int i = 0; i < 7; ++i) expd[i] = N * phi[i] / total;
-    std::string msg;
-    EXPECT_GT(test::ChiSquarePValue(obs, expd, &msg), 1e-4) << msg;
+    EXPECT_TRUE(test::Chi2Accepts(test::Chi2Counts(obs, expd)));
 }
 
 TEST(LightSampler, NoLightsAndAllZeroPower) {
@@ -796,24 +798,23 @@ TEST(LightSampler, NoLightsAndAllZeroPower) {
 TEST(EqualArea, RoundTripAndUniformity) {
     std::mt19937 rng(6);
     std::uniform_real_distribution<float> U(0, 1);
-    const int nT = 10, nP = 16, N = 100000;
-    std::vector<double> obs(nT * nP, 0), expd(nT * nP, double(N) / (nT * nP));
-    for (int i = 0; i < N; ++i) {
+    int i = 0;
+    auto sample = [&](test::Chi2Point *d) {
         Vec2f p(U(rng), U(rng));
         Vec3f w = EqualAreaSquareToSphere(p);
-        ASSERT_NEAR(Length(w), 1, 1e-5f);
+        EXPECT_NEAR(Length(w), 1, 1e-5f);
         Vec2f q = EqualAreaSphereToSquare(w);
-        if (i < 2000) {
+        if (i++ < 2000) {
             EXPECT_NEAR(p.x, q.x, 2e-4f);
             EXPECT_NEAR(p.y, q.y, 2e-4f);
         }
-        int a = Min(int((1 - w.z) / 2 * nT), nT - 1);
-        Float phi = std::atan2(w.y, w.x);
-        if (phi < 0) phi += 2 * Pi;
-        obs[a * nP + Min(int(phi / (2 * Pi) * nP), nP - 1)] += 1;
-    }
-    std::string msg;
-    EXPECT_GT(test::ChiSquarePValue(obs, expd, &msg), 1e-4) << msg;
+        *d = {w.x, w.y, w.z};
+        return true;
+    };
+    // Uniform over the sphere: cells of equal solid angle (the whole sphere as a cap).
+    test::Chi2Result r = test::Chi2SampleTest(test::CapDomain({0, 0, 1}, -1, 10, 16), sample,
+                                              [](const test::Chi2Point &) { return 1 / (4 * Pi); });
+    EXPECT_TRUE(test::Chi2Accepts(r));
     // Octahedral wrap at the square's edge stays in range.
     int x = 8, y = 3;
     WrapOctahedral(&x, &y, 8, 8);

@@ -1,4 +1,4 @@
-// Lucerna reference tests: whole images against pbrt-v4 references in ../shared/refs, with a
+// Lucerna reference tests: whole images against pbrt-v4 references in data/refs, with a
 // tolerance derived from the measured noise. K independent renders give every pixel a sample
 // variance; block means (8x8) of the average image then have a known standard error, and the
 // z-score of (ours - reference) per block and channel must look like noise: at most a small
@@ -14,29 +14,34 @@
 #include <cstdio>
 
 #include "integrators/render_helpers.h"
+#include "support/shared_scenes.h"
 
 namespace lu::test {
 
 namespace {
 
 struct RefCase {
-    const char *scene, *ref;
-    int w, h, sppPerRun, runs;
+    const char *name;           // in SharedScenes(): an unbiased ("path") reference
+    int sppPerRun, runs;
     double maxOutlierFraction;  // fraction of block-channels allowed beyond |z| = 3.29
     double relTolerance;        // added to the standard error: relTolerance * reference block mean
 };
 
 void CompareWithReference(const RefCase &rc) {
+    const SharedScene *s = FindSharedScene(rc.name);
+    ASSERT_NE(s, nullptr) << rc.name;
+    ASSERT_TRUE(s->ExactReference()) << rc.name << ": its reference is " << s->refIntegrator;
     BuildOptions opts;
-    opts.resX = rc.w;
-    opts.resY = rc.h;
+    opts.resX = s->refWidth;
+    opts.resY = s->refHeight;
     Diagnostics diag;
     diag.quiet = true;
-    auto scene = LoadScene(SharedPath(rc.scene), diag, opts);
-    Image ref = ReadImage(SharedPath(rc.ref));
-    ASSERT_EQ(ref.width, rc.w);
-    ASSERT_EQ(ref.height, rc.h);
-    const int n = rc.w * rc.h;
+    auto scene = LoadScene(SharedPath(s->scene), diag, opts);
+    Image ref = ReadImage(SharedPath(s->reference));
+    ASSERT_EQ(ref.width, s->refWidth);
+    ASSERT_EQ(ref.height, s->refHeight);
+    const int w = s->refWidth, h = s->refHeight;
+    const int n = w * h;
     std::vector<double> sum(size_t(n) * 3, 0), sum2(size_t(n) * 3, 0);
     for (int k = 0; k < rc.runs; ++k) {
         auto r = RenderScene(*scene, rc.sppPerRun, scene->settings.maxDepth, 1000 + k);
@@ -50,20 +55,20 @@ void CompareWithReference(const RefCase &rc) {
     }
     const int K = rc.runs, B = 8;
     // Reference noise: pbrt's image at S spp; its variance per pixel ~ ours * (our spp / S).
-    const double refVarRatio = double(rc.sppPerRun * K) / 8192.0;
+    const double refVarRatio = double(rc.sppPerRun * K) / s->refSpp;
     int blocks = 0, outliers = 0;
     double maxZ = 0, ourTotal = 0, refTotal = 0;
-    for (int by = 0; by + B <= rc.h; by += B)
-        for (int bx = 0; bx + B <= rc.w; bx += B)
+    for (int by = 0; by + B <= h; by += B)
+        for (int bx = 0; bx + B <= w; bx += B)
             for (int c = 0; c < 3; ++c) {
                 double m = 0, r = 0, var = 0;
                 for (int y = by; y < by + B; ++y)
                     for (int x = bx; x < bx + B; ++x) {
-                        size_t i = (size_t(y) * rc.w + x) * 3 + c;
+                        size_t i = (size_t(y) * w + x) * 3 + c;
                         double mean = sum[i] / K;
                         double v = std::max(0.0, (sum2[i] - K * mean * mean) / (K - 1));
                         m += mean;
-                        r += ref.pixels[(size_t(y) * rc.w + x) * ref.channels + c];
+                        r += ref.pixels[(size_t(y) * w + x) * ref.channels + c];
                         var += v / K;
                     }
                 m /= B * B;
@@ -78,7 +83,7 @@ void CompareWithReference(const RefCase &rc) {
             }
     double frac = double(outliers) / blocks;
     std::printf("%s: %d block-channels, %d beyond |z|=3.29 (%.2f%%), max |z| %.2f, mean ours %.5f ref %.5f (%.3f%%)\n",
-                rc.scene, blocks, outliers, 100 * frac, maxZ, ourTotal / blocks, refTotal / blocks,
+                s->scene.c_str(), blocks, outliers, 100 * frac, maxZ, ourTotal / blocks, refTotal / blocks,
                 100 * (ourTotal - refTotal) / refTotal);
     EXPECT_LE(frac, rc.maxOutlierFraction);
     EXPECT_NEAR(ourTotal / refTotal, 1.0, 0.015);
@@ -87,12 +92,12 @@ void CompareWithReference(const RefCase &rc) {
 }  // namespace
 
 TEST(Reference, CornellBox) {
-    CompareWithReference({"scenes/bitterli-cornell-box/scene-v4.pbrt", "refs/cornell-box.exr", 128, 128, 64, 4, 0.01, 0.0});
+    CompareWithReference({"cornell-box", 64, 4, 0.01, 0.0});
 }
 
 TEST(Reference, VeachMis) {
     // Fireflies (see the header): 2% relative tolerance per block, 1% of block-channels beyond |z| 3.29.
-    CompareWithReference({"scenes/bitterli-veach-mis/scene-v4.pbrt", "refs/veach-mis.exr", 192, 108, 64, 4, 0.01, 0.02});
+    CompareWithReference({"veach-mis", 64, 4, 0.01, 0.02});
 }
 
 }  // namespace lu::test

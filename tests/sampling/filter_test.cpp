@@ -82,59 +82,76 @@ TEST(Filter, MitchellHasNegativeLobes) {
     EXPECT_EQ(EvalFilter(m, Vec2f(2.1f, 0)), 0.f);
 }
 
+// The chi-square test (support/chi2.h) of sampled filter positions on a 16x16 grid over the
+// support against the density SampleFilter should follow: the exact |f| for box and triangle,
+// the tabulated |f| (1/32-pixel cells, summed exactly per histogram cell) for gaussian and
+// mitchell. weight(v) maps a table value to its sampling weight (|v|; negative tests change it).
+test::Chi2Result FilterChi2(const FilterData &filter, uint64_t seed, Float (*weight)(Float) = nullptr) {
+    FilterScene fs(filter);
+    const FilterData &f = fs.f;
+    const int hb = 16;
+    RNG rng(seed);
+    auto sample = [&](test::Chi2Point *p) {
+        FilterSample s = SampleFilter(f, fs.view, Vec2f(rng.Uniform<float>(), rng.Uniform<float>()));
+        *p = {s.p.x, s.p.y, 0};
+        return true;
+    };
+    test::Chi2Domain domain = test::RectDomain(-f.radiusX, f.radiusX, -f.radiusY, f.radiusY, hb, hb);
+    test::Chi2Options opts;
+    opts.samples = 200000;
+    if (f.distribution != NoIndex) {
+        int nx = FilterTableSize(f.radiusX), ny = FilterTableSize(f.radiusY);
+        std::vector<double> table(size_t(nx) * ny);
+        double total = 0;
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x) {
+                Float v = FilterTableValue(f, x, y, nx, ny);
+                table[size_t(y) * nx + x] = weight ? weight(v) : std::abs(v);
+                total += table[size_t(y) * nx + x];
+            }
+        // Table cells partly inside a histogram cell count by the overlapping fraction.
+        opts.cellMass = [=](double u0, double u1, double v0, double v1) {
+            double m = 0;
+            for (int y = 0; y < ny; ++y) {
+                double oy = std::max(0.0, std::min(v1 * ny, y + 1.0) - std::max(v0 * ny, double(y)));
+                if (oy <= 0) continue;
+                for (int x = 0; x < nx; ++x) {
+                    double ox = std::max(0.0, std::min(u1 * nx, x + 1.0) - std::max(u0 * nx, double(x)));
+                    if (ox > 0) m += ox * oy * table[size_t(y) * nx + x];
+                }
+            }
+            return m / total;
+        };
+        return test::Chi2SampleTest(domain, sample, opts);
+    }
+    auto pdf1 = [&](double a, double r) {  // normalized |f_1D| on [-r, r]
+        if (f.kind == FilterKind::Box) return 1 / (2 * r);
+        return std::max(0.0, r - std::abs(a)) / (r * r);
+    };
+    return test::Chi2SampleTest(domain, sample, [&](const test::Chi2Point &p) {
+        return pdf1(p.x, f.radiusX) * pdf1(p.y, f.radiusY);
+    }, opts);
+}
+
 TEST(Filter, SampledPositionsFollowAbsFilter) {
-    // Histogram of sampled positions on a 16x16 grid over the support against the sampled
-    // density: the exact |f| for box and triangle, the tabulated |f| (1/32-pixel cells) for
-    // gaussian and mitchell; 16x16 histogram cells are unions of whole table cells.
     const FilterData filters[] = {MakeFilter("box"), MakeFilter("triangle"), MakeFilter("triangle", 1, 1.5f),
                                   MakeFilter("gaussian"), MakeFilter("mitchell"),
                                   MakeFilter("mitchell", 1.f, 2.f, -1, 0.f, 0.5f)};
-    const int nFilters = 6, hb = 16, n = 200000;
-    const double alpha = 1 - std::pow(1 - 1e-4, 1.0 / nFilters);
-    for (const FilterData &filter : filters) {
-        FilterScene fs(filter);
-        const FilterData &f = fs.f;
+    for (const FilterData &f : filters) {
+        SCOPED_TRACE(int(f.kind));
         bool tabulated = f.kind == FilterKind::Gaussian || f.kind == FilterKind::Mitchell;
-        ASSERT_EQ(tabulated, f.distribution != NoIndex);
-        std::vector<double> expected(hb * hb, 0), observed(hb * hb, 0);
-        if (tabulated) {
-            int nx = FilterTableSize(f.radiusX), ny = FilterTableSize(f.radiusY);
-            ASSERT_EQ(nx % hb, 0);
-            ASSERT_EQ(ny % hb, 0);
-            double total = 0;
-            for (int y = 0; y < ny; ++y)
-                for (int x = 0; x < nx; ++x) {
-                    double v = std::abs(FilterTableValue(f, x, y, nx, ny));
-                    expected[(y / (ny / hb)) * hb + x / (nx / hb)] += v;
-                    total += v;
-                }
-            for (double &e : expected) e *= n / total;
-        } else {
-            auto cdf1 = [&](double a, double r) {  // integral of |f_1D| from -r to a, normalized
-                if (f.kind == FilterKind::Box) return (a + r) / (2 * r);
-                return a < 0 ? 0.5 * (r + a) * (r + a) / (r * r) : 1 - 0.5 * (r - a) * (r - a) / (r * r);
-            };
-            for (int y = 0; y < hb; ++y)
-                for (int x = 0; x < hb; ++x) {
-                    double x0 = -f.radiusX + 2.0 * f.radiusX * x / hb, x1 = x0 + 2.0 * f.radiusX / hb;
-                    double y0 = -f.radiusY + 2.0 * f.radiusY * y / hb, y1 = y0 + 2.0 * f.radiusY / hb;
-                    expected[y * hb + x] = n * (cdf1(x1, f.radiusX) - cdf1(x0, f.radiusX)) *
-                                           (cdf1(y1, f.radiusY) - cdf1(y0, f.radiusY));
-                }
-        }
-        RNG rng(17);
-        for (int i = 0; i < n; ++i) {
-            Vec2f u(rng.Uniform<float>(), rng.Uniform<float>());
-            FilterSample s = SampleFilter(f, fs.view, u);
-            ASSERT_LE(std::abs(s.p.x), f.radiusX);
-            ASSERT_LE(std::abs(s.p.y), f.radiusY);
-            int ix = std::min(int((s.p.x + f.radiusX) / (2 * f.radiusX) * hb), hb - 1);
-            int iy = std::min(int((s.p.y + f.radiusY) / (2 * f.radiusY) * hb), hb - 1);
-            observed[iy * hb + ix] += 1;
-        }
-        std::string msg;
-        EXPECT_GT(test::ChiSquarePValue(observed, expected, &msg), alpha) << "filter " << int(f.kind) << ": " << msg;
+        ASSERT_EQ(tabulated, FilterScene(f).f.distribution != NoIndex);
+        EXPECT_TRUE(test::Chi2Accepts(FilterChi2(f, 17), 1e-4, 6));
     }
+}
+
+// The harness rejects densities that are not the sampled one: mitchell's positive part only
+// (sampling f instead of |f| would drop the negative lobes), and a flatter gaussian (|f|^0.8).
+TEST(Filter, SampledPositionsRejectWrongDensities) {
+    EXPECT_TRUE(test::Chi2Rejects(FilterChi2(MakeFilter("mitchell"), 17, [](Float v) { return std::max(v, Float(0)); })));
+    EXPECT_TRUE(test::Chi2Rejects(FilterChi2(MakeFilter("gaussian", 1.5f, 1.5f, 0.5f), 17, [](Float v) {
+        return std::pow(std::abs(v), Float(0.8));  // a flatter bell: |f|^0.8
+    })));
 }
 
 TEST(Filter, WeightsAreFOverPdf) {

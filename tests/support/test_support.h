@@ -1,21 +1,35 @@
-// Lucerna test support: paths to shared data and a chi-square goodness-of-fit helper.
+// Lucerna test support: paths into the source tree (data/ holds the shared scenes and
+// references), per-test temporary folders, and running the built binaries and scripts.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "support/chi2.h"
 
 namespace lu::test {
 
-// Path of a file under ../shared (scenes, refs).
+// Path of a file under data/ in the source tree: the shared scenes and references
+// ("scenes/bitterli-cornell-box/scene-v4.pbrt", "refs/cornell-box.exr"; see data/README.md).
 std::string SharedPath(const std::string &rel);
 // Path of a file in the source tree.
 std::string SourcePath(const std::string &rel);
 // A fresh temporary directory for one test.
 std::string TempDir(const std::string &name);
 
-// Pearson chi-square test of observed counts against expected counts (cells with expected < 5
-// are pooled, as Mitsuba's chi2 harness does). Returns the p-value; *message gets a summary.
-double ChiSquarePValue(const std::vector<double> &observed, const std::vector<double> &expected,
-                       std::string *message = nullptr);
+// The lucerna binary of this build.
+std::string LucernaBinary();
+// The Python interpreter with matplotlib and numpy that CMake found on PATH (LUCERNA_PYTHON).
+std::string PythonExe();
+
+struct ProcessResult {
+    int exitCode = -1;   // the exit status, 128 + signal if killed, 127 if it could not be started
+    std::string output;  // stdout and stderr together
+};
+// Runs argv[0] (looked up on PATH when it has no '/') with the arguments, no shell, the extra
+// environment variables set; waits for it.
+ProcessResult RunProcess(const std::vector<std::string> &argv,
+                         const std::vector<std::pair<std::string, std::string>> &env = {});
 
 }  // namespace lu::test
