@@ -1,5 +1,5 @@
 // Lucerna: selective path regularization. Unit tests of the cone kernel and its MIS weights, and
-// the analytic consistency scene of ../shared/METHOD.md: a point light above a floor beside a
+// the analytic consistency scene of docs/method.md: a point light above a floor beside a
 // plane mirror (camera - floor - mirror - light). Plain path tracing cannot render the mirrored
 // light; regpath must converge to its analytic irradiance, with a bias that shrinks with N.
 #include <gtest/gtest.h>
