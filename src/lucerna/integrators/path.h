@@ -50,7 +50,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- Explicit techniques at this vertex ----
         bool specular = bsdf.IsSpecular(), regularized = false;
         SampledSpectrum Ld;
-        if (SampleDirect(si, bsdf, specular, lambda, sampler, scene, tracer, ps, st, &Ld, &regularized)) {
+        if (SampleDirect(si, bsdf, specular, prev, lambda, sampler, scene, tracer, ps, st, &Ld, &regularized)) {
             SampledSpectrum c = beta * Ld;
             if (regularized) st.regEnergy += c.Average();
             L += c;

@@ -72,18 +72,23 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
 
 // ---- The regularized connection (integrators/regularization.h) ----
 
-// One light sample at a specular vertex, tested against the cone of every Dirac lobe, weighted
-// against the implicit technique. A light that no lobe's cone can reach is not sampled (same
-// random numbers consumed, same result).
+// One light sample at a specular vertex, tested against the cone of every Dirac lobe; each lobe
+// it falls in is weighted against the implicit technique that picks that lobe (with the lobe's
+// probability: lobe-aware MIS) and hits the light. A light that no lobe's cone can reach is not
+// sampled (same random numbers consumed, same result). deltaLightsOnly (the vertex ends a chain of
+// Dirac vertices from the camera: the pixel integral samples the paths to area and infinite
+// lights there, unbiased) connects only to point, spot and distant lights.
 template <typename Tracer>
 LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
                                         Sampler &sampler, const SceneView &scene, const Tracer &tracer,
-                                        const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
+                                        const RegularizationParams &rp, LightStrategy strategy, bool deltaLightsOnly,
+                                        PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
+    if (deltaLightsOnly && !IsDeltaLight(light)) return SampledSpectrum(0);
     SpecularLobe lobes[2];
     int n = bsdf.SpecularLobes(si.wo, lobes);
     if (light.boundRadius >= 0) {
@@ -97,47 +102,24 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
         return SampledSpectrum(0);
     Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
     Float pdfConeW = ConePdfW(oneMinusCos);
+    Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
+    // f_reg |cos| / p = weight * phi / pdf per lobe; for delta lights the "pdf" is the pmf alone.
     SampledSpectrum sum(0);
     for (int i = 0; i < n; ++i) {
         if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
-        sum += lobes[i].weight;
+        sum += lobes[i].weight * RegularizedConnectionWeight(lobes[i].pdf * pdfConeW, pdfLightW);
     }
     if (sum.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
     ++st.rays; ++st.shadowRays;
     if (tracer.Occluded(shadow)) return SampledSpectrum(0);
-    Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
-    Float w = RegularizedConnectionWeight(pdfConeW, pdfLightW);
-    // f_reg |cos| / p = weight * phi / pdf; for delta lights the "pdf" is the pmf alone.
     Float pSample = pick.pmf * ls.pdf;
-    SampledSpectrum c = sum * ls.L * (w * pdfConeW / pSample);
+    SampledSpectrum c = sum * ls.L * (pdfConeW / pSample);
     ++st.regConnections;
     return c;
 }
 
-// ---- The explicit techniques at one vertex ----
-
-// Direct light at vertex si by every explicit technique that applies there: NEE at non-specular
-// vertices, the regularized connection at specular ones (when the pass regularizes). Returns false
-// when none applies; *regularized tells which one ran.
-template <typename Tracer>
-LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const SampledWavelengths &lambda,
-                        Sampler &sampler, const SceneView &scene, const Tracer &tracer, const PathSettings &ps,
-                        PathStats &st, SampledSpectrum *Ld, bool *regularized) {
-    *regularized = false;
-    if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
-        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
-        return true;
-    }
-    if (ps.reg.enabled) {
-        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, ps.strategy, st);
-        *regularized = true;
-        return true;
-    }
-    return false;
-}
-
-// ---- BSDF sampling, and the emitters it hits ----
+// ---- The vertex record for MIS ----
 
 // The vertex a BSDF-sampled ray left from, as the emitter it hits needs it for MIS.
 struct ScatterVertex {
@@ -145,8 +127,38 @@ struct ScatterVertex {
     Float pdfBsdfW = 1;        // pdf of the sampled direction (proportional samples: the BSDF's PDF)
     bool camera = true;        // the ray is a camera ray: nothing else can sample what it hits
     bool specular = false;     // the sampled lobe is a Dirac lobe
-    bool regularized = false;  // ... and the regularized connection ran at that vertex
+    bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there
+    bool allSpecular = true;   // every vertex of the path so far (from the camera) sampled a Dirac lobe
 };
+
+// ---- The explicit techniques at one vertex ----
+
+// Direct light at vertex si by every explicit technique that applies there: NEE at non-specular
+// vertices, the regularized connection at specular ones (when the pass regularizes). `in` is the
+// vertex the path came from. Returns false when none applies; *regularized tells whether the
+// regularized connection ran and could have sampled area and infinite lights.
+template <typename Tracer>
+LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
+                        const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                        const Tracer &tracer, const PathSettings &ps, PathStats &st, SampledSpectrum *Ld,
+                        bool *regularized) {
+    *regularized = false;
+    if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
+        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
+        return true;
+    }
+    if (ps.reg.enabled) {
+        // Selectivity: after Dirac vertices only (from the camera), area and infinite lights are
+        // sampled without bias by the pixel integral; only delta lights need the technique there.
+        bool deltaOnly = in.allSpecular;
+        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, ps.strategy, deltaOnly, st);
+        *regularized = !deltaOnly;
+        return true;
+    }
+    return false;
+}
+
+// ---- BSDF sampling, and the emitters it hits ----
 
 // MIS weight of emitter `li` hit along wi at pLight (normal nLight) from vertex v, against the
 // explicit technique that could have sampled it there. Infinite lights: pLight = v.ctx.p + wi,
@@ -155,9 +167,9 @@ LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene,
                                  Vec3f nLight, bool atInfinity, const PathSettings &ps) {
     if (v.camera || (v.specular && !v.regularized)) return 1;
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
-    if (v.specular) {
+    if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
-        return RegularizedHitWeight(ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
+        return RegularizedHitWeight(v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
     }
     return BSDFHitWeight(ps.strategy, v.pdfBsdfW, pdfLightW);
 }
@@ -174,6 +186,7 @@ LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsd
     v.pdfBsdfW = bs.pdfIsProportional ? bsdf.PDF(si.wo, bs.wi) : bs.pdf;
     v.camera = false;
     v.specular = bs.IsSpecular();
+    v.allSpecular = v.allSpecular && v.specular;
     v.regularized = v.specular && regularized;
     v.ctx = MakeLightContext(si);
     if (bs.IsTransmission()) etaScale *= Sqr(bs.eta);
