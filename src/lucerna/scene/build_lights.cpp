@@ -244,6 +244,30 @@ void FinishLights(BuildContext &ctx) {
     }
     s.lightCdf.clear();
     s.lightCdf = BuildLightCdf(s.View());
+    // When every light has zero power the CDF is uniform (pbrt-v4); a degenerate (zero-area)
+    // triangle must not be picked then: sampling it gives a NaN pdf. Meshes keep at least one
+    // triangle with area (build_shapes.cpp drops the others), so some light remains.
+    view = s.View();
+    std::vector<double> mass(s.lights.size());
+    double total = 0;
+    bool changed = false;
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const Light &l = s.lights[i];
+        mass[i] = double(s.lightCdf[i + 1]) - double(s.lightCdf[i]);
+        if (l.kind == LightKind::DiffuseArea && mass[i] > 0 && !(ShapeArea(view, view.shapes[l.shape], l.primitive) > 0)) {
+            mass[i] = 0;
+            changed = true;
+        }
+        total += mass[i];
+    }
+    if (changed && total > 0) {
+        double run = 0;
+        for (size_t i = 0; i < s.lights.size(); ++i) {
+            run += mass[i];
+            s.lightCdf[i + 1] = Float(run / total);
+        }
+        s.lightCdf.back() = 1;
+    }
 }
 
 }  // namespace lu::build

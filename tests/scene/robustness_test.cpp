@@ -1,0 +1,228 @@
+// Robustness of the scene builder against what users and fuzzers write: degenerate transforms
+// (no crash, located warnings, nothing non-finite in the scene or the image), invalid light and
+// material values (located SceneError, exit code 2), partial spectrum files, and lightless scenes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "integrators/render_helpers.h"
+
+namespace lu {
+namespace {
+
+using test::RenderScene;
+using test::TempDir;
+
+// Four header lines; world content starts on line 5.
+const char *kHeader =
+    "LookAt 0 0 -5  0 0 0  0 1 0\n"
+    "Camera \"perspective\" \"float fov\" [ 40 ]\n"
+    "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
+    "WorldBegin\n";
+// A lit backdrop (lines 5-6 after the header) so that renders have something finite to show.
+const char *kBackdrop =
+    "LightSource \"point\" \"point3 from\" [ 0 0 -4 ] \"rgb I\" [ 5 5 5 ]\n"
+    "Shape \"trianglemesh\" \"point3 P\" [ -2 -2 1  2 -2 1  0 2 1 ]\n";
+
+bool Contains(const std::string &s, const std::string &what) { return s.find(what) != std::string::npos; }
+
+// Parses and builds a scene written to a temporary folder (so that relative files resolve);
+// *diag gets the warnings.
+std::unique_ptr<HostScene> BuildFile(const std::string &name, const std::string &text, Diagnostics *diag,
+                                     const std::vector<std::pair<std::string, std::string>> &files = {}) {
+    std::string dir = TempDir("robust_" + name);
+    for (const auto &[file, content] : files) std::ofstream(dir + "/" + file) << content;
+    std::ofstream(dir + "/scene.pbrt") << text;
+    diag->quiet = true;
+    return LoadScene(dir + "/scene.pbrt", *diag, {});
+}
+
+// The warnings mentioning `what`, each checked to be located at "scene.pbrt:LINE:".
+int CountWarnings(const Diagnostics &diag, const std::string &what, int line) {
+    int n = 0;
+    for (const std::string &w : diag.warnings)
+        if (Contains(w, what)) {
+            EXPECT_TRUE(Contains(w, "scene.pbrt:" + std::to_string(line) + ":")) << w;
+            ++n;
+        }
+    return n;
+}
+
+std::string AllWarnings(const Diagnostics &diag) {
+    std::string s;
+    for (const std::string &w : diag.warnings) s += w + "\n";
+    return s;
+}
+
+// Every render-space number the backends read from the geometry is finite.
+void ExpectFiniteGeometry(const HostScene &s) {
+    for (const Vec3f &p : s.positions) EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    for (const Vec3f &n : s.normals) EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
+    auto finite = [](const Matrix4 &m) {
+        for (const auto &row : m.m)
+            for (Float x : row)
+                if (!std::isfinite(x)) return false;
+        return true;
+    };
+    for (const Sphere &sp : s.spheres) EXPECT_TRUE(finite(sp.renderFromObject.m) && finite(sp.renderFromObject.mInv));
+    for (const Disk &d : s.disks) EXPECT_TRUE(finite(d.renderFromObject.m) && finite(d.renderFromObject.mInv));
+    for (Float c : s.lightCdf) EXPECT_TRUE(std::isfinite(c));
+}
+
+// Renders with "path" and with "regpath" (regularized): no sample rejected, every pixel finite.
+void ExpectCleanRenders(const HostScene &scene) {
+    for (bool regularize : {false, true}) {
+        SCOPED_TRACE(regularize ? "regpath" : "path");
+        test::RenderResultForTest r = RenderScene(scene, 4, 5, 0, 2, 0, regularize, regularize ? 0.1 : 0, regularize ? 0.05 : 0);
+        EXPECT_EQ(r.stats.rejected, 0u);
+        for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v));
+    }
+}
+
+// Runs the lucerna binary; returns its exit status (128 + signal when killed) and its stdout
+// and stderr together.
+int RunLucerna(const std::vector<std::string> &args, std::string *err = nullptr) {
+    const std::string bin = std::string(LUCERNA_BINARY_DIR) + "/lucerna";
+    std::string errFile = TempDir("robust_cli_stderr") + "/stderr.txt";
+    pid_t pid = fork();
+    if (pid == 0) {
+        std::vector<char *> argv;
+        argv.push_back(const_cast<char *>(bin.c_str()));
+        for (const std::string &a : args) argv.push_back(const_cast<char *>(a.c_str()));
+        argv.push_back(nullptr);
+        if (!freopen(errFile.c_str(), "w", stdout) || dup2(fileno(stdout), fileno(stderr)) < 0) _exit(126);
+        execv(bin.c_str(), argv.data());
+        _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (err) {
+        std::stringstream ss;
+        ss << std::ifstream(errFile).rdbuf();
+        *err = ss.str();
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// ---- 1. Shapes under singular transformations ----
+
+struct SingularCase {
+    const char *name;
+    const char *world;  // after the header and the backdrop (its first line is line 7)
+    int warningLine;    // where the builder's warning points
+    const char *what;   // in the warning
+    size_t lights;      // lights left (the backdrop's point light is one)
+};
+
+const SingularCase kSingular[] = {
+    {"SphereScale101", "AttributeBegin\nScale 1 0 1\nShape \"sphere\"\nAttributeEnd\n", 9, "sphere: the transformation is singular", 1},
+    {"SphereScale000", "AttributeBegin\nScale 0 0 0\nShape \"sphere\"\nAttributeEnd\n", 9, "sphere: the transformation is singular", 1},
+    {"SphereAreaLight",
+     "AttributeBegin\nScale 1 0 1\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\nShape \"sphere\"\nAttributeEnd\n", 10,
+     "its area light is dropped", 1},
+    {"DiskAreaLight",
+     "AttributeBegin\nScale 0 0 0\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\nShape \"disk\"\nAttributeEnd\n", 10,
+     "disk: the transformation is singular", 1},
+    {"SphereInInstance", "ObjectBegin \"o\"\nScale 1 0 1\nShape \"sphere\"\nObjectEnd\nObjectInstance \"o\"\n", 9,
+     "(object instance \"o\" used at", 1},
+    {"InstanceTransform", "ObjectBegin \"o\"\nShape \"sphere\"\nObjectEnd\nAttributeBegin\nScale 0 0 0\nObjectInstance \"o\"\nAttributeEnd\n", 8,
+     "sphere: the transformation is singular", 1},
+    {"TriangleLightScale000",
+     "AttributeBegin\nScale 0 0 0\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\n"
+     "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0 ]\nAttributeEnd\n", 10, "has zero area under its singular", 1},
+};
+
+class Singular : public testing::TestWithParam<SingularCase> {};
+
+TEST_P(Singular, DroppedWithALocatedWarningAndRendersClean) {
+    const SingularCase &c = GetParam();
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile(c.name, std::string(kHeader) + kBackdrop + c.world, &diag);
+    EXPECT_EQ(CountWarnings(diag, c.what, c.warningLine), 1) << AllWarnings(diag);
+    EXPECT_TRUE(s->spheres.empty());
+    EXPECT_TRUE(s->disks.empty());
+    EXPECT_EQ(s->lights.size(), c.lights);
+    ExpectFiniteGeometry(*s);
+    ExpectCleanRenders(*s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Robust, Singular, testing::ValuesIn(kSingular),
+                         [](const testing::TestParamInfo<SingularCase> &i) { return std::string(i.param.name); });
+
+// A mesh that keeps its area under a singular transformation (a quad in the plane y = 0 under
+// "Scale 1 0 1") is kept; its per-vertex normals, which need the inverse, are discarded.
+TEST(Robust, FlattenedMeshKeepsItsAreaAndDropsItsNormals) {
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile(
+        "flat_mesh", std::string(kHeader) + kBackdrop +
+                         "AttributeBegin\nScale 1 0 1\nShape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+                         "  \"point3 P\" [ -1 0 -1  1 0 -1  1 0 1  -1 0 1 ] \"normal N\" [ 0 1 0  0 1 0  0 1 0  0 1 0 ]\nAttributeEnd\n",
+        &diag);
+    EXPECT_EQ(CountWarnings(diag, "\"N\" are discarded", 9), 1) << AllWarnings(diag);
+    ASSERT_EQ(s->triangleMeshes.size(), 2u);
+    EXPECT_EQ(s->triangleMeshes[1].triangleCount, 2u);
+    EXPECT_EQ(s->triangleMeshes[1].normalOffset, NoIndex);
+    ExpectFiniteGeometry(*s);
+    ExpectCleanRenders(*s);
+}
+
+// With zero emission everywhere the light CDF is uniform (pbrt-v4); a degenerate triangle of an
+// emitting mesh must still never be picked (its area pdf is 1 / 0).
+TEST(Robust, DegenerateEmitterIsNeverPicked) {
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile(
+        "degenerate_emitter", std::string(kHeader) +
+                                  "AreaLightSource \"diffuse\" \"rgb L\" [ 0 0 0 ]\n"
+                                  "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2  0 1 3 ]\n"
+                                  "  \"point3 P\" [ -1 -1 1  1 -1 1  0 1 1  0 -1 1 ]\n",
+        &diag);
+    ASSERT_EQ(s->lights.size(), 2u);
+    ASSERT_EQ(s->lightCdf.size(), 3u);
+    EXPECT_FLOAT_EQ(s->lightCdf[1], 1.f);  // all of it on triangle 0, none on the degenerate triangle 1
+    EXPECT_FLOAT_EQ(s->lightCdf[2], 1.f);
+    ExpectCleanRenders(*s);
+}
+
+// A projective "Transform" can send a vertex to infinity: a located error, not a NaN in Embree.
+TEST(Robust, NonFiniteVertexIsALocatedError) {
+    Diagnostics diag;
+    try {
+        BuildFile("projective", std::string(kHeader) +
+                                    "Transform [ 1 0 0 0  0 1 0 0  0 0 1 1  0 0 0 0 ]\n"
+                                    "Shape \"trianglemesh\" \"point3 P\" [ 0 0 0  1 0 0  0 1 0 ]\n",
+                  &diag);
+        ADD_FAILURE() << "no SceneError";
+    } catch (const SceneError &e) {
+        EXPECT_EQ(e.Loc().line, 6) << e.what();
+        EXPECT_TRUE(Contains(e.Message(), "not finite")) << e.what();
+    }
+}
+
+// The CLI: the scene that aborted inside Embree (exit 134) renders with both integrators, and
+// `lucerna info` names the dropped shape.
+TEST(Robust, CliRendersSingularSphereLight) {
+    std::string dir = TempDir("robust_cli_singular");
+    std::string scene = dir + "/scene.pbrt";
+    std::ofstream(scene) << kHeader << kBackdrop
+                         << "AttributeBegin\nScale 1 0 1\nAreaLightSource \"diffuse\" \"rgb L\" [ 4 4 4 ]\nShape \"sphere\"\nAttributeEnd\n"
+                         << "ObjectBegin \"o\"\nScale 0 0 0\nShape \"sphere\"\nObjectEnd\nObjectInstance \"o\"\n";
+    for (const char *integrator : {"path", "regpath"}) {
+        std::string err;
+        EXPECT_EQ(RunLucerna({"render", scene, "--spp", "2", "-q", "--integrator", integrator, "-o", dir + "/out.exr"}, &err), 0)
+            << integrator << ": " << err;
+        EXPECT_TRUE(Contains(err, "scene.pbrt:10:1: warning: sphere: the transformation is singular")) << err;
+        EXPECT_EQ(CountNonFinite(ReadImage(dir + "/out.exr")), 0u);
+    }
+    std::string out;
+    EXPECT_EQ(RunLucerna({"info", scene}, &out), 0) << out;
+    EXPECT_TRUE(Contains(out, "its area light is dropped")) << out;
+}
+
+}  // namespace
+}  // namespace lu
