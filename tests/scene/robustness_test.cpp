@@ -224,5 +224,146 @@ TEST(Robust, CliRendersSingularSphereLight) {
     EXPECT_TRUE(Contains(out, "its area light is dropped")) << out;
 }
 
+
+// ---- 2. Values that would render NaN, infinity or negative radiance: located errors, exit 2 ----
+
+struct BadInput {
+    const char *name;
+    const char *world;  // after the header: its first line is line 5
+    int line;           // of the SceneError
+    const char *what;   // in its message
+};
+
+// Spectrum files the bad inputs name (in the scene's folder).
+const std::vector<std::pair<std::string, std::string>> kSpectrumFiles = {
+    {"neg.spd", "400 1\n500 -1\n"},
+    {"nan.spd", "# comment\n400 1\n500 nan\n"},
+    {"inf.spd", "400 inf\n"},
+    {"unsorted.spd", "400 1\n600 1\n500 1\n"},
+    {"odd.spd", "400 1 500\n"},
+    {"empty.spd", "# nothing\n"},
+    {"word.spd", "400 one\n"},
+    {"zero.spd", "400 0 500 1.5\n"},
+};
+
+const BadInput kBad[] = {
+    // Lights: scale, power, illuminance, emission spectra, spot cone, degenerate directions.
+    {"AreaScaleNegative", "AreaLightSource \"diffuse\" \"float scale\" -1\nShape \"sphere\"\n", 5, "\"scale\" must not be negative"},
+    {"AreaPowerNegative", "AreaLightSource \"diffuse\" \"float power\" -2\nShape \"sphere\"\n", 5, "\"power\" must be positive"},
+    {"AreaPowerZero", "AreaLightSource \"diffuse\" \"float power\" 0\nShape \"sphere\"\n", 5, "\"power\" must be positive"},
+    {"AreaLNegativeFile", "AreaLightSource \"diffuse\" \"spectrum L\" \"neg.spd\"\nShape \"sphere\"\n", 5, "negative value -1 at 500 nm (line 2)"},
+    {"AreaLNegativePairs", "\nAreaLightSource \"diffuse\" \"spectrum L\" [ 400 1 500 -0.5 ]\nShape \"sphere\"\n", 6, "negative value -0.5"},
+    {"AreaLNegativeRGB", "AreaLightSource \"diffuse\" \"rgb L\" [ 1 -1 1 ]\nShape \"sphere\"\n", 5, "negative component"},  // existed
+    {"PointScaleNegative", "LightSource \"point\" \"float scale\" -3\n", 5, "\"scale\" must not be negative"},
+    {"PointPowerNegative", "LightSource \"point\" \"float power\" -3\n", 5, "\"power\" must be positive"},
+    {"SpotPowerNegative", "LightSource \"spot\" \"float power\" -3\n", 5, "\"power\" must be positive"},
+    {"SpotConeAngle", "LightSource \"spot\" \"float coneangle\" -10\n", 5, "\"coneangle\" must be in (0, 180]"},
+    {"SpotConeDelta", "LightSource \"spot\" \"float coneangle\" 20 \"float conedeltaangle\" 30\n", 5, "\"conedeltaangle\""},
+    {"SpotSameFromTo", "LightSource \"spot\" \"point3 from\" [ 1 1 1 ] \"point3 to\" [ 1 1 1 ]\n", 5, "must differ"},  // existed
+    {"SpotCollapsed", "AttributeBegin\nScale 0 0 0\nLightSource \"spot\"\nAttributeEnd\n", 7, "collapses the light's direction"},
+    {"DistantCollapsed", "AttributeBegin\nScale 0 0 0\nLightSource \"distant\"\nAttributeEnd\n", 7, "collapses the light's direction"},
+    {"DistantIlluminance", "LightSource \"distant\" \"float illuminance\" -1\n", 5, "\"illuminance\" must be positive"},
+    {"DistantScale", "LightSource \"distant\" \"float scale\" -1\n", 5, "\"scale\" must not be negative"},
+    {"InfiniteScale", "LightSource \"infinite\" \"float scale\" -1\n", 5, "\"scale\" must not be negative"},
+    {"InfiniteIlluminance", "LightSource \"infinite\" \"float illuminance\" -1\n", 5, "\"illuminance\" must be positive"},
+    {"PointProjective", "Transform [ 1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 0 ]\nLightSource \"point\"\n", 6, "position to infinity"},
+    // Spectrum files: non-finite, unsorted, malformed.
+    {"FileNaN", "Material \"diffuse\" \"spectrum reflectance\" \"nan.spd\"\nShape \"sphere\"\n", 5, "line 3: \"nan\" is not a finite number"},
+    {"FileInf", "AreaLightSource \"diffuse\" \"spectrum L\" \"inf.spd\"\nShape \"sphere\"\n", 5, "\"inf\" is not a finite number"},
+    {"FileUnsorted", "LightSource \"point\" \"spectrum I\" \"unsorted.spd\"\n", 5, "line 3: wavelengths are not increasing"},
+    {"FileOdd", "LightSource \"point\" \"spectrum I\" \"odd.spd\"\n", 5, "odd number of values"},
+    {"FileEmpty", "LightSource \"point\" \"spectrum I\" \"empty.spd\"\n", 5, "no (wavelength, value) pairs"},
+    {"FileWord", "LightSource \"point\" \"spectrum I\" \"word.spd\"\n", 5, "\"one\" is not a number"},
+    // Materials.
+    {"RoughnessNegative", "Material \"conductor\" \"float roughness\" -0.1\nShape \"sphere\"\n", 5, "\"roughness\" must not be negative"},
+    {"URoughnessNegative", "Material \"dielectric\" \"float uroughness\" -0.1\nShape \"sphere\"\n", 5, "\"uroughness\" must not be negative"},
+    {"RoughnessTexture", "Texture \"r\" \"float\" \"constant\" \"float value\" -1\n"
+                         "Material \"coateddiffuse\" \"texture roughness\" \"r\"\nShape \"sphere\"\n", 6, "\"roughness\" must not be negative"},
+    {"RoughnessChecker", "Texture \"r\" \"float\" \"checkerboard\" \"float tex1\" 0.1 \"float tex2\" -0.2\n"
+                         "Material \"conductor\" \"texture roughness\" \"r\"\nShape \"sphere\"\n", 6, "(got -0.2)"},
+    {"EtaZero", "Material \"dielectric\" \"float eta\" 0\nShape \"sphere\"\n", 5, "\"eta\" (index of refraction) must be positive"},
+    {"EtaNegative", "Material \"thindielectric\" \"float eta\" -1.5\nShape \"sphere\"\n", 5, "must be positive"},
+    {"EtaCoated", "Material \"coateddiffuse\" \"float eta\" -1.5\nShape \"sphere\"\n", 5, "must be positive"},
+    {"EtaSpectrumZero", "Material \"dielectric\" \"spectrum eta\" \"zero.spd\"\nShape \"sphere\"\n", 5, "index of refraction must be positive, got 0 at 400 nm"},
+    {"ConductorKNegative", "Material \"conductor\" \"spectrum k\" [ 400 -1 700 1 ]\nShape \"sphere\"\n", 5, "negative value -1"},
+    {"CoatedThickness", "Material \"coateddiffuse\" \"float thickness\" -0.01\nShape \"sphere\"\n", 5, "\"thickness\" must not be negative"},
+    {"CoatedG", "Material \"coateddiffuse\" \"float g\" 1.5\nShape \"sphere\"\n", 5, "\"g\" must be in [-1, 1]"},
+    {"CoatedNSamples", "Material \"coateddiffuse\" \"integer nsamples\" 0\nShape \"sphere\"\n", 5, "\"nsamples\" must be at least 1"},
+    {"CoatedMaxDepth", "Material \"coateddiffuse\" \"integer maxdepth\" -1\nShape \"sphere\"\n", 5, "\"maxdepth\" must not be negative"},
+    {"NamedMaterialRoughness", "MakeNamedMaterial \"m\" \"string type\" \"conductor\" \"float roughness\" -1\n", 5, "must not be negative"},
+    // Shapes (existing checks, kept under test).
+    {"SphereRadius", "Shape \"sphere\" \"float radius\" -1\n", 5, "radius must be positive"},
+    {"DiskRadius", "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 2\n", 5, "innerradius < radius"},
+};
+
+class Bad : public testing::TestWithParam<BadInput> {};
+
+TEST_P(Bad, IsALocatedSceneErrorAndExitCode2) {
+    const BadInput &c = GetParam();
+    std::string text = std::string(kHeader) + "LightSource \"point\" \"rgb I\" [ 1 1 1 ]\n" + c.world;
+    // The extra light line moves the world down by one.
+    int line = c.line + 1;
+    Diagnostics diag;
+    try {
+        BuildFile(std::string("bad_") + c.name, text, &diag, kSpectrumFiles);
+        ADD_FAILURE() << "no SceneError";
+    } catch (const SceneError &e) {
+        EXPECT_EQ(e.Loc().line, line) << e.what();
+        EXPECT_TRUE(Contains(e.Message(), c.what)) << e.what();
+    }
+    std::string dir = TempDir(std::string("robust_bad_cli_") + c.name);
+    for (const auto &[file, content] : kSpectrumFiles) std::ofstream(dir + "/" + file) << content;
+    std::ofstream(dir + "/scene.pbrt") << text;
+    std::string err;
+    EXPECT_EQ(RunLucerna({"render", dir + "/scene.pbrt", "--spp", "1", "-q", "-o", dir + "/out.exr"}, &err), 2) << err;
+    EXPECT_TRUE(Contains(err, "scene.pbrt:" + std::to_string(line) + ":")) << err;
+}
+
+INSTANTIATE_TEST_SUITE_P(Robust, Bad, testing::ValuesIn(kBad),
+                         [](const testing::TestParamInfo<BadInput> &i) { return std::string(i.param.name); });
+
+// pbrt-v4 evaluates a spectrum given over part of 360-830 nm as 0 outside it. For eta and k that
+// is an index of refraction 0, whose Fresnel term is NaN (every sample of a rough conductor was
+// rejected); Lucerna extends eta and k with their end values (and warns), and keeps pbrt-v4's 0
+// for emission and reflectance.
+TEST(Robust, PartialSpectrumFiles) {
+    std::vector<std::pair<std::string, std::string>> files = {{"part.spd", "400 0.2\n500 0.5\n600 0.8\n"}};
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile(
+        "partial_spectrum", std::string(kHeader) +
+                                "LightSource \"point\" \"point3 from\" [ 0 0 -4 ] \"rgb I\" [ 5 5 5 ]\n"
+                                "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" \"part.spd\"\n"
+                                "Translate 0 1.5 -1\nShape \"sphere\" \"float radius\" 0.3\nAttributeEnd\n"
+                                "Material \"conductor\" \"spectrum eta\" \"part.spd\" \"spectrum k\" \"part.spd\" \"float roughness\" 0.3\n"
+                                "Shape \"trianglemesh\" \"point3 P\" [ -2 -2 1  2 -2 1  0 2 1 ]\n",
+        &diag, files);
+    EXPECT_EQ(CountWarnings(diag, "spectrum \"eta\" from \"part.spd\" covers 400-600 nm only", 11), 1) << AllWarnings(diag);
+    EXPECT_EQ(CountWarnings(diag, "spectrum \"k\" from \"part.spd\" covers 400-600 nm only", 11), 1) << AllWarnings(diag);
+    EXPECT_EQ(CountWarnings(diag, "spectrum \"L\"", 0), 0) << AllWarnings(diag);
+    // eta and k: the end values outside [400, 600]; L: 0 outside, linear inside.
+    SceneView v = s->View();
+    const Material *conductor = nullptr;
+    for (const Material &m : s->materials)
+        if (m.kind == MaterialKind::Conductor) conductor = &m;
+    ASSERT_NE(conductor, nullptr);
+    const Material &m = *conductor;
+    auto at = [&](const Spectrum &sp, Float lambda) {
+        SampledWavelengths w = SampledWavelengths::SampleVisible(0.5f);
+        for (int i = 0; i < NSpectrumSamples; ++i) w.lambda[i] = lambda;
+        return SampleSpectrum(sp, w, v.spectra)[0];
+    };
+    EXPECT_NEAR(at(m.conductorEta.value, 380), 0.2f, 1e-6f);
+    EXPECT_NEAR(at(m.conductorK.value, 700), 0.8f, 1e-6f);
+    EXPECT_NEAR(at(m.conductorEta.value, 450), 0.35f, 1e-6f);
+    const Light *area = nullptr;
+    for (const Light &l : s->lights)
+        if (l.kind == LightKind::DiffuseArea) area = &l;
+    ASSERT_NE(area, nullptr);
+    EXPECT_EQ(at(area->spectrum, 380), 0.f);
+    EXPECT_EQ(at(area->spectrum, 700), 0.f);
+    EXPECT_NEAR(at(area->spectrum, 550), 0.65f, 1e-6f);
+    ExpectCleanRenders(*s);
+}
+
 }  // namespace
 }  // namespace lu
