@@ -365,5 +365,47 @@ TEST(Robust, PartialSpectrumFiles) {
     ExpectCleanRenders(*s);
 }
 
+
+// ---- 3. Scenes that can only render black say so (pbrt-v4 warns too) ----
+
+// The whole-scene warning, located at the main file (no line): "DIR/scene.pbrt: warning: ...".
+int CountFileWarnings(const Diagnostics &diag, const std::string &what) {
+    int n = 0;
+    for (const std::string &w : diag.warnings)
+        if (Contains(w, what)) {
+            EXPECT_TRUE(Contains(w, "/scene.pbrt: warning: ")) << w;
+            ++n;
+        }
+    return n;
+}
+
+TEST(Robust, SceneWithoutLightsWarns) {
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile("no_lights", std::string(kHeader) + "Shape \"sphere\"\n", &diag);
+    EXPECT_EQ(CountFileWarnings(diag, "the scene has no light sources; the image will be black"), 1) << AllWarnings(diag);
+    EXPECT_EQ(diag.warnings.size(), 1u) << AllWarnings(diag);
+    // A light that is dropped (its sphere is flat) leaves the scene without lights as well.
+    Diagnostics dropped;
+    BuildFile("dropped_light", std::string(kHeader) + "Scale 1 0 1\nAreaLightSource \"diffuse\"\nShape \"sphere\"\n", &dropped);
+    EXPECT_EQ(CountFileWarnings(dropped, "no light sources"), 1) << AllWarnings(dropped);
+    // One light is enough.
+    Diagnostics lit;
+    BuildFile("lit", std::string(kHeader) + "LightSource \"distant\"\nShape \"sphere\"\n", &lit);
+    EXPECT_TRUE(lit.warnings.empty()) << AllWarnings(lit);
+}
+
+TEST(Robust, EmptyFileWarnsInTheLibraryAndInInfo) {
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile("empty_file", "", &diag);
+    EXPECT_EQ(CountFileWarnings(diag, "the scene has no shapes and no light sources"), 1) << AllWarnings(diag);
+    std::string dir = TempDir("robust_empty_cli");
+    std::ofstream(dir + "/scene.pbrt") << "# nothing here\n";
+    std::string out;
+    EXPECT_EQ(RunLucerna({"info", dir + "/scene.pbrt"}, &out), 0) << out;
+    EXPECT_TRUE(Contains(out, "scene.pbrt: warning: the scene has no shapes and no light sources")) << out;
+    EXPECT_EQ(RunLucerna({"render", dir + "/scene.pbrt", "--res", "8x8", "--spp", "1", "-q", "-o", dir + "/out.exr"}, &out), 0) << out;
+    EXPECT_TRUE(Contains(out, "no shapes and no light sources")) << out;
+}
+
 }  // namespace
 }  // namespace lu

@@ -280,6 +280,14 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
 
 void FinishLights(BuildContext &ctx) {
     HostScene &s = ctx.scene;
+    // pbrt-v4 warns too ("No light sources defined in scene; rendering a black image").
+    if (s.lights.empty()) {
+        FileLoc file;
+        if (!ctx.desc.filename.empty()) file.file = std::make_shared<const std::string>(ctx.desc.filename);
+        bool empty = s.shapes.empty() && ctx.desc.shapes.empty() && ctx.desc.instances.empty();
+        ctx.diag.Warning(file, empty ? "the scene has no shapes and no light sources; the image will be black"
+                                     : "the scene has no light sources; the image will be black");
+    }
     // pbrt-v4's Bounds3::BoundingSphere of the scene bounds.
     Vec3f center;
     Float radius = 0;
