@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "integrators/render_helpers.h"
@@ -131,6 +132,8 @@ const SingularCase kSingular[] = {
      "disk: the transformation is singular", 1},
     {"SphereInInstance", "ObjectBegin \"o\"\nScale 1 0 1\nShape \"sphere\"\nObjectEnd\nObjectInstance \"o\"\n", 9,
      "(object instance \"o\" used at", 1},
+    {"WarnedOncePerShape", "ObjectBegin \"o\"\nScale 1 0 1\nShape \"sphere\"\nObjectEnd\nObjectInstance \"o\"\nObjectInstance \"o\"\n"
+                           "ObjectInstance \"o\"\n", 9, "sphere: the transformation is singular", 1},
     {"InstanceTransform", "ObjectBegin \"o\"\nShape \"sphere\"\nObjectEnd\nAttributeBegin\nScale 0 0 0\nObjectInstance \"o\"\nAttributeEnd\n", 8,
      "sphere: the transformation is singular", 1},
     {"TriangleLightScale000",
@@ -266,6 +269,7 @@ const BadInput kBad[] = {
     {"DistantScale", "LightSource \"distant\" \"float scale\" -1\n", 5, "\"scale\" must not be negative"},
     {"InfiniteScale", "LightSource \"infinite\" \"float scale\" -1\n", 5, "\"scale\" must not be negative"},
     {"InfiniteIlluminance", "LightSource \"infinite\" \"float illuminance\" -1\n", 5, "\"illuminance\" must be positive"},
+    {"SphereProjective", "Transform [ 1 0 0 0  0 1 0 0  0 0 1 1  0 0 0 1 ]\nShape \"sphere\"\n", 6, "sends the shape to infinity"},
     {"PointProjective", "Transform [ 1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 0 ]\nLightSource \"point\"\n", 6, "position to infinity"},
     // Spectrum files: non-finite, unsorted, malformed.
     {"FileNaN", "Material \"diffuse\" \"spectrum reflectance\" \"nan.spd\"\nShape \"sphere\"\n", 5, "line 3: \"nan\" is not a finite number"},
@@ -406,6 +410,21 @@ TEST(Robust, EmptyFileWarnsInTheLibraryAndInInfo) {
     EXPECT_EQ(RunLucerna({"render", dir + "/scene.pbrt", "--res", "8x8", "--spp", "1", "-q", "-o", dir + "/out.exr"}, &out), 0) << out;
     EXPECT_TRUE(Contains(out, "no shapes and no light sources")) << out;
 }
+
+
+#ifndef NDEBUG
+// Debug builds assert that nothing non-finite reaches Embree (backend/cpu/embree_scene.*; the
+// asserts and this test are compiled out with NDEBUG, as in Release). A NaN inverse poked into
+// a built scene, which the builder no longer produces, stops at the user-geometry hit.
+TEST(RobustDeathTest, DebugBuildsAssertThatNoNaNReachesEmbree) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    Diagnostics diag;
+    std::unique_ptr<HostScene> s = BuildFile("nan_poke", std::string(kHeader) + kBackdrop + "Shape \"sphere\"\n", &diag);
+    ASSERT_EQ(s->spheres.size(), 1u);
+    s->spheres[0].renderFromObject.mInv.m[0][0] = std::numeric_limits<Float>::quiet_NaN();
+    EXPECT_DEATH(RenderScene(*s, 1, 5, 0, 1), "hit distance NaN");
+}
+#endif
 
 }  // namespace
 }  // namespace lu

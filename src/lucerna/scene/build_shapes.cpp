@@ -289,6 +289,18 @@ void BuildBilinearMesh(BuildContext &ctx, const Placement &pl) {
     AddTriangles(ctx, pl, m);
 }
 
+// Adds the render-space box of an analytic shape's object-space box to the scene bounds; a
+// projective "Transform" that sends a corner to infinity is an error (the box goes to Embree).
+void AddBounds(BuildContext &ctx, const Placement &pl, const Vec3f &pMin, const Vec3f &pMax) {
+    for (int i = 0; i < 8; ++i) {
+        Vec3f p((i & 1) ? pMax.x : pMin.x, (i & 2) ? pMax.y : pMin.y, (i & 4) ? pMax.z : pMin.z);
+        Vec3f q = pl.renderFromObject.ApplyPoint(p);
+        if (!IsFinite(q.x) || !IsFinite(q.y) || !IsFinite(q.z))
+            Fail(pl.shape->loc, pl.shape->name + ": the transformation sends the shape to infinity" + pl.where);
+    }
+    ExpandBounds(ctx.scene.bounds, pl.renderFromObject, pMin, pMax);
+}
+
 // Spheres and disks are intersected in object space through the inverse transformation; under a
 // singular one they are flat (or a point, a segment) and pbrt-v4 cannot intersect them either.
 void DropSingular(BuildContext &ctx, const Placement &pl) {
@@ -314,7 +326,7 @@ void BuildSphere(BuildContext &ctx, const Placement &pl) {
     sp.renderFromObject = pl.renderFromObject;
     sp.radius = radius;
     sp.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
-    ExpandBounds(s.bounds, sp.renderFromObject, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
     Shape shape;
     shape.kind = ShapeKind::Sphere;
     shape.index = uint32_t(s.spheres.size());
@@ -348,7 +360,7 @@ void BuildDisk(BuildContext &ctx, const Placement &pl) {
     d.radius = radius;
     d.innerRadius = inner;
     d.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
-    ExpandBounds(s.bounds, d.renderFromObject, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
     Shape shape;
     shape.kind = ShapeKind::Disk;
     shape.index = uint32_t(s.disks.size());
