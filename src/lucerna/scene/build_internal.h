@@ -131,6 +131,12 @@ std::string ResolvePath(const std::string &baseDirectory, const std::string &fil
 // is not there, the directory of the file that named it (Include) is tried.
 std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirectory, const std::string &filename);
 
+// ---- build_values.cpp ----
+
+// SceneError at the offending parameter of `p` for values that would render NaN, infinity or
+// negative radiance (negative roughness or thickness, eta <= 0, |g| > 1, nsamples < 1).
+void CheckMaterialValues(const Material &m, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner);
+
 // ---- build_shapes.cpp ----
 
 void BuildShapes(BuildContext &ctx);

@@ -1048,7 +1048,9 @@ SceneDescription Run(Tokenizer &tz, const std::string &path, Diagnostics &diag, 
     try {
         Parser parser(diag, options);
         parser.ParseTop(tz, path);
-        return parser.Finish();
+        SceneDescription desc = parser.Finish();
+        desc.filename = path;
+        return desc;
     } catch (SceneError &e) {
         if (e.SourceLine().empty() && e.Loc().file == tz.File()) e.SetSourceLine(tz.SourceLine(e.Loc().line));
         throw;
