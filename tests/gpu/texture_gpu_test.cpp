@@ -46,8 +46,8 @@ TEST(GpuTextures, FeatureScenesMatchCpu) {
         uint64_t rejected = 0;
         for (int s = 0; s < seeds; ++s) {
             FilmAccumulator fc, fg;
-            RenderCPU(*host, test::JobForScene(*host, "path", spp, 1 + s), fc);
-            RenderStats sg = RenderCUDA(dev, test::JobForScene(*host, "path", spp, 101 + s), fg);
+            RenderCPU(*host, test::SettingsFor(*host, "path", spp, 1 + s), fc);
+            RenderStats sg = RenderCUDA(dev, host->sampler, test::SettingsFor(*host, "path", spp, 101 + s), fg);
             rejected += sg.rejected;
             cpu.push_back(fc.Resolve(host->View().film));
             gpu.push_back(fg.Resolve(host->View().film));
