@@ -33,6 +33,8 @@ SceneView HostScene::View() const {
     v.infiniteLights = SpanOf(infiniteLights);
     v.images = SpanOf(images);
     v.texels = SpanOf(texels);
+    v.floatTextures = SpanOf(floatTextures);
+    v.spectrumTextures = SpanOf(spectrumTextures);
     v.distributions2D = SpanOf(distributions2D);
     v.distData = SpanOf(distData);
     v.spectra = spectra.Tables();
