@@ -18,17 +18,20 @@ const char *kHeader =
     "Film \"rgb\" \"integer xresolution\" [ 32 ] \"integer yresolution\" [ 16 ]\n"
     "Camera \"perspective\" \"float fov\" [ 45 ]\n"
     "WorldBegin\n";
+// After the world under test, so that line numbers in it count from the header; a light keeps the
+// builder's "no light sources" warning out of the warning counts below.
+const char *kLight = "\nLightSource \"point\"\n";
 
 std::unique_ptr<HostScene> BuildWorld(const std::string &world, Diagnostics &diag) {
     diag.quiet = true;
-    SceneDescription desc = ParseSceneString(std::string(kHeader) + world, "test.pbrt", diag);
+    SceneDescription desc = ParseSceneString(std::string(kHeader) + world + kLight, "test.pbrt", diag);
     return BuildScene(desc, diag, BuildOptions{});
 }
 
 // A scene file in its own folder (for image textures).
 std::unique_ptr<HostScene> BuildFile(const std::string &dir, const std::string &world, Diagnostics &diag) {
     diag.quiet = true;
-    std::ofstream(dir + "/scene.pbrt") << std::string(kHeader) << world;
+    std::ofstream(dir + "/scene.pbrt") << std::string(kHeader) << world << kLight;
     return LoadScene(dir + "/scene.pbrt", diag, BuildOptions{});
 }
 

@@ -154,7 +154,8 @@ std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirecto
 
 // SceneError at the offending parameter of `p` for values that would render NaN, infinity or
 // negative radiance (negative roughness or thickness, eta <= 0, |g| > 1, nsamples < 1).
-void CheckMaterialValues(const Material &m, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner);
+void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
+                         const FileLoc &loc, const std::string &owner);
 
 // ---- build_shapes.cpp ----
 

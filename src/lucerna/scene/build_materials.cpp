@@ -150,7 +150,7 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
     // Bump and normal mapping change the shading normal: refuse rather than ignore.
     if (p.Has("displacement")) FailUnsupported(ParamLoc(p, "displacement", loc), "material \"displacement\" (bump mapping)");
     if (p.Has("normalmap")) FailUnsupported(ParamLoc(p, "normalmap", loc), "material \"normalmap\"");
-    CheckMaterialValues(m, p, loc, owner);
+    CheckMaterialValues(m, ctx.scene.floatTextures, p, loc, owner);
     p.ReportUnused(ctx.diag, owner);
     uint32_t index = uint32_t(ctx.scene.materials.size());
     ctx.scene.materials.push_back(m);
