@@ -66,13 +66,6 @@ Tokenizer::Tokenizer(std::string text, std::string filename)
     if (text_.size() >= 3 && c[0] == 0xef && c[1] == 0xbb && c[2] == 0xbf) pos_ = 3;  // UTF-8 BOM
 }
 
-std::unique_ptr<Tokenizer> Tokenizer::FromFile(const std::string &path, const FileLoc &from) {
-    std::string text;
-    std::string why = ReadFileBytes(path, &text, MaxSceneFileBytes);
-    if (!why.empty()) throw SceneError(from, "cannot read scene file \"" + path + "\": " + why);
-    return std::make_unique<Tokenizer>(std::move(text), path);
-}
-
 std::string Tokenizer::SourceLine(int line) const {
     if (line < 1) return "";
     size_t start = 0;

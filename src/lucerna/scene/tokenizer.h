@@ -40,8 +40,6 @@ class Tokenizer {
   public:
     // The text is kept by the tokenizer; filename is what FileLocs report.
     Tokenizer(std::string text, std::string filename);
-    // Reads a file; a failure is a SceneError at `from` (the Include or the command line).
-    static std::unique_ptr<Tokenizer> FromFile(const std::string &path, const FileLoc &from);
 
     // Next token, skipping whitespace and comments; false at end of input. Throws SceneError on
     // an unterminated string, a bad escape, a control byte (binary input), an overlong token.
