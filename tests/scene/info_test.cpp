@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -67,6 +68,26 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     std::string media;
     EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 2) << media;
     EXPECT_TRUE(Contains(media, "MakeNamedMedium")) << media;
+
+    // A gzip-compressed scene reads as the plain one; a truncated one is exit 2 at the file.
+    std::string text, gz = dir + "/cb.pbrt.gz", cut = dir + "/cut.pbrt.gz";
+    {
+        std::ifstream in(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+        gzFile f = gzopen(gz.c_str(), "wb");
+        ASSERT_TRUE(f);
+        ASSERT_EQ(gzwrite(f, text.data(), unsigned(text.size())), int(text.size()));
+        gzclose(f);
+        std::ifstream zin(gz, std::ios::binary);
+        std::string bytes(std::istreambuf_iterator<char>(zin), {});
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    }
+    std::string zipped;
+    EXPECT_EQ(RunInfo(gz, &zipped), 0) << zipped;
+    EXPECT_TRUE(Contains(zipped, "triangles: 36")) << zipped;
+    std::string truncated;
+    EXPECT_EQ(RunInfo(cut, &truncated), 2) << truncated;
+    EXPECT_TRUE(Contains(truncated, cut + ": error: truncated gzip data")) << truncated;
 }
 
 }  // namespace

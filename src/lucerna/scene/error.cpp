@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+
+#include <zlib.h>
 
 namespace lu {
 
@@ -26,31 +27,36 @@ SceneError::SceneError(FileLoc loc, std::string message)
     : std::runtime_error(LocPrefix(loc) + "error: " + message), loc_(std::move(loc)),
       message_(std::move(message)) {}
 
-// Reads line `line` (1-based) of `path`, reading at most a bounded number of bytes.
+// Reads line `line` (1-based) of `path`, reading at most a bounded number of bytes; gzip files are
+// decompressed (zlib's gzread passes other files through unchanged).
 static bool ReadSourceLine(const std::string &path, int line, std::string *out) {
-    std::ifstream in(path, std::ios::binary);
+    gzFile in = gzopen(path.c_str(), "rb");
     if (!in) return false;
     constexpr size_t maxBytes = size_t(1) << 30;
     size_t read = 0;
     int current = 1;
     std::string s;
     char buf[1 << 14];
-    while (in && read < maxBytes) {
-        in.read(buf, sizeof(buf));
-        std::streamsize n = in.gcount();
+    bool found = false;
+    while (!found && read < maxBytes) {
+        int n = gzread(in, buf, sizeof(buf));
         if (n <= 0) break;
         read += size_t(n);
-        for (std::streamsize i = 0; i < n; ++i) {
+        for (int i = 0; i < n && !found; ++i) {
             char c = buf[i];
             if (c == '\n') {
-                if (current == line) { *out = s; return true; }
-                ++current;
+                if (current == line) found = true;
+                else ++current;
                 continue;
             }
             if (current == line && s.size() < 4096) s.push_back(c);
         }
     }
-    if (current == line) { *out = s; return true; }
+    gzclose(in);
+    if (found || current == line) {
+        *out = s;
+        return true;
+    }
     return false;
 }
 

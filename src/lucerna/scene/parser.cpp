@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "lucerna/scene/gzip.h"
 #include "lucerna/scene/tokenizer.h"
 
 namespace lu {
@@ -197,15 +198,15 @@ class TokenStream {
 };
 
 // Attaches tz's copy of the offending line to an error located in tz's file that has none (errors
-// thrown by the target), so that in-memory files show it too.
+// thrown by the target), so that in-memory and compressed files show it too.
 void AttachSourceLine(SceneError &e, const Tokenizer &tz) {
     if (e.SourceLine().empty() && e.Loc().file && e.Loc().file == tz.File())
         e.SetSourceLine(tz.SourceLine(e.Loc().line));
 }
 
-// Reads a scene file: "" on success, else why.
-std::string ReadSceneText(const std::string &path, std::string *text) {
-    return ReadFileBytes(path, text, MaxSceneFileBytes);
+// Reads a scene file, decompressing it if it is gzip data: "" on success, else why.
+std::string ReadSceneText(const std::string &path, std::string *text, bool *corrupt = nullptr) {
+    return ReadFileGunzipped(path, text, MaxSceneFileBytes, corrupt);
 }
 
 // ---- The parser ----
@@ -607,7 +608,10 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
 
 void ParseFile(ParserTarget &target, const std::string &filename, const ParseOptions &options, ValueBudget &budget) {
     std::string text;
-    std::string why = ReadSceneText(filename, &text);
+    bool corrupt = false;
+    std::string why = ReadSceneText(filename, &text, &corrupt);
+    // A corrupt compressed file is located at the file itself ("scene.pbrt.gz: error: ...").
+    if (corrupt) throw SceneError(FileLoc{std::make_shared<const std::string>(filename), 0, 0}, why);
     if (!why.empty()) throw SceneError(FileLoc{}, "cannot read scene file \"" + filename + "\": " + why);
     Tokenizer tz(std::move(text), filename);
     Parser(target, options, budget).ParseMain(tz, filename);

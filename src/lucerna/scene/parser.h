@@ -1,6 +1,6 @@
 // Lucerna scene reader: the pbrt-v4 text-format parser (host only). As pbrt-v4's parser.h, it only
 // tokenizes and parses: each directive goes to a ParserTarget, such as the SceneDescriptionBuilder
-// (description_builder.h), which owns the graphics state.
+// (description_builder.h), which owns the graphics state. Scene files may be gzip-compressed.
 #pragma once
 
 #include <cstddef>
@@ -109,7 +109,8 @@ class ParserTarget {
     virtual void EndOfFiles() = 0;
 };
 
-// Parses a scene file and everything it includes, calling target for each directive and then target.EndOfFiles(). Throws SceneError.
+// Parses a scene file and everything it includes (each gzip-compressed or not: told by its first
+// bytes, whatever its name), calling target for each directive and then target.EndOfFiles(). Throws SceneError.
 void ParseFile(ParserTarget &target, const std::string &filename, const ParseOptions &options, ValueBudget &budget);
 // The same for scene text in memory; filename is what FileLocs report and what Include resolves against.
 void ParseString(ParserTarget &target, const std::string &text, const std::string &filename,
