@@ -64,6 +64,11 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     EXPECT_TRUE(Contains(err, "bad.pbrt:2:")) << err;
     EXPECT_TRUE(Contains(err, "error:")) << err;
     EXPECT_TRUE(Contains(err, "fov")) << err;
+    // An error in an included file says where it was included from.
+    std::ofstream(dir + "/top.pbrt") << "\nInclude \"bad.pbrt\"\n";
+    std::string chained;
+    EXPECT_EQ(RunInfo(dir + "/top.pbrt", &chained), 2) << chained;
+    EXPECT_TRUE(Contains(chained, "In file included from " + dir + "/top.pbrt:2:1:\n" + dir + "/bad.pbrt:2:")) << chained;
 
     std::string media;
     EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 2) << media;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "lucerna/scene/builder.h"
 #include "lucerna/scene/parser.h"
 #include "lucerna/scene/ply.h"
 #include "support/test_support.h"
@@ -209,6 +210,54 @@ TEST(ParseErrors, IncludeCycle) {
     WriteFile(dir + "/self.pbrt", "WorldBegin\nImport \"self.pbrt\"\n");
     EXPECT_EQ(FileErrorOf(dir + "/self.pbrt").Message(),
               "Import cycle: " + dir + "/self.pbrt -> " + dir + "/self.pbrt");
+}
+
+TEST(ParseErrors, IncludeChainsPrecedeTheMessage) {
+    // a.pbrt includes b.pbrt (line 2), which imports c.pbrt (line 3), which has the error.
+    std::string dir = test::TempDir("err_chain");
+    WriteFile(dir + "/a.pbrt", "WorldBegin\nInclude \"b.pbrt\"\n");
+    WriteFile(dir + "/b.pbrt", "# b\n\n  Import \"c.pbrt\"\n");
+    WriteFile(dir + "/c.pbrt", "Shape \"sphere\" \"float radius\" \"x\"\n");
+    SceneError e = FileErrorOf(dir + "/a.pbrt");
+    EXPECT_EQ(e.Format(), "In file included from " + dir + "/b.pbrt:3:3,\n"
+                          "                 from " + dir + "/a.pbrt:2:1:\n" +
+                          dir + "/c.pbrt:1:16: error: parameter \"float radius\": expected a number, but got the string \"x\"\n"
+                          "Shape \"sphere\" \"float radius\" \"x\"\n"
+                          "               ^");
+    // what() stays one line.
+    EXPECT_EQ(std::string(e.what()), dir + "/c.pbrt:1:16: error: " + e.Message());
+    // An error at the Include directive itself names the files above it.
+    WriteFile(dir + "/c.pbrt", "Include \"missing.pbrt\"\n");
+    EXPECT_EQ(FileErrorOf(dir + "/a.pbrt").Format().substr(0, 200).find("In file included from " + dir + "/b.pbrt:3:3,\n"),
+              0u);
+    // Warnings too, and the locations kept in the description.
+    WriteFile(dir + "/c.pbrt", "\nScale 0 1 1\nShape \"sphere\"\n");
+    Diagnostics diag;
+    diag.quiet = true;
+    SceneDescription d = ParseSceneFile(dir + "/a.pbrt", diag);
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_EQ(diag.warnings[0], "In file included from " + dir + "/b.pbrt:3:3,\n"
+                                "                 from " + dir + "/a.pbrt:2:1:\n" +
+                                dir + "/c.pbrt:3:1: warning: the transformation of this Shape is not invertible");
+    ASSERT_EQ(d.shapes.size(), 1u);
+    ASSERT_TRUE(d.shapes[0].loc.includedFrom);
+    EXPECT_EQ(d.shapes[0].loc.includedFrom->ToString(), dir + "/b.pbrt:3:3");
+    // Errors found after parsing, by the scene builder.
+    WriteFile(dir + "/c.pbrt", "Shape \"frobnicate\"\n");
+    try {
+        LoadScene(dir + "/a.pbrt", diag, BuildOptions{});
+        ADD_FAILURE() << "no error";
+    } catch (SceneError &b) {
+        EXPECT_EQ(b.Format().find("In file included from " + dir + "/b.pbrt:3:3,\n                 from " + dir +
+                                  "/a.pbrt:2:1:\n" + dir + "/c.pbrt:1:1: error: "),
+                  0u)
+            << b.Format();
+    }
+    // Locations in the main file have none.
+    WriteFile(dir + "/one.pbrt", "WorldBegin\nShape \"sphere\"\n");
+    SceneDescription m = ParseSceneFile(dir + "/one.pbrt", diag);
+    EXPECT_FALSE(m.shapes[0].loc.includedFrom);
+    EXPECT_EQ(m.shapes[0].loc.IncludeChain(), "");
 }
 
 TEST(ParseErrors, UnmatchedAttributeEnd) {

@@ -18,6 +18,15 @@ std::string FileLoc::ToString() const {
     return s;
 }
 
+std::string FileLoc::IncludeChain() const {
+    std::string s;
+    for (const FileLoc *from = includedFrom.get(); from; from = from->includedFrom.get()) {
+        s += s.empty() ? "In file included from " : "                 from ";
+        s += from->ToString() + (from->includedFrom ? ",\n" : ":\n");
+    }
+    return s;
+}
+
 static std::string LocPrefix(const FileLoc &loc) {
     if (!loc.file && loc.line == 0) return "";
     return loc.ToString() + ": ";
@@ -85,7 +94,7 @@ static void SourceAndCaret(std::string line, int col, std::string *src, std::str
 }
 
 std::string SceneError::Format() const {
-    std::string s = LocPrefix(loc_) + "error: " + message_;
+    std::string s = loc_.IncludeChain() + LocPrefix(loc_) + "error: " + message_;
     if (loc_.line <= 0) return s;
     std::string line = sourceLine_;
     if (line.empty() && loc_.file && !ReadSourceLine(*loc_.file, loc_.line, &line)) return s;
@@ -96,7 +105,7 @@ std::string SceneError::Format() const {
 }
 
 void Diagnostics::Warning(const FileLoc &loc, const std::string &message) {
-    std::string s = LocPrefix(loc) + "warning: " + message;
+    std::string s = loc.IncludeChain() + LocPrefix(loc) + "warning: " + message;
     if (!quiet) std::fprintf(stderr, "%s\n", s.c_str());
     warnings.push_back(std::move(s));
 }

@@ -465,7 +465,7 @@ void Parser::IncludeFile(TokenStream &ts, const Token &dir, const std::string &f
     std::string why = ReadSceneText(path, &text);
     if (!why.empty())
         ts.Fail(dir, "cannot read " + std::string(isImport ? "imported" : "included") + " file \"" + path + "\": " + why);
-    Tokenizer sub(std::move(text), path);
+    Tokenizer sub(std::move(text), path, loc);
     includeChain_.push_back(canonical);
     ParseFile(sub, DirectoryOf(path));
     includeChain_.pop_back();

@@ -56,8 +56,9 @@ std::string ReadFileBytes(const std::string &path, std::string *contents, size_t
     return "";
 }
 
-Tokenizer::Tokenizer(std::string text, std::string filename)
-    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(filename))) {
+Tokenizer::Tokenizer(std::string text, std::string filename, const FileLoc &includedFrom)
+    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(filename))),
+      includedFrom_(includedFrom.file ? std::make_shared<const FileLoc>(includedFrom) : nullptr) {
     const unsigned char *c = (const unsigned char *)text_.data();
     if (text_.size() >= 2 && ((c[0] == 0xfe && c[1] == 0xff) || (c[0] == 0xff && c[1] == 0xfe)))
         Fail(1, 1, "the file is UTF-16 encoded; scene files must be ASCII or UTF-8");
@@ -86,7 +87,7 @@ std::string Tokenizer::SourceLine(int line) const {
 }
 
 void Tokenizer::Fail(int line, int col, const std::string &message) const {
-    SceneError e(FileLoc{file_, line, col}, message);
+    SceneError e(FileLoc{file_, line, col, includedFrom_}, message);
     e.SetSourceLine(SourceLine(line));
     throw e;
 }
@@ -121,6 +122,7 @@ bool Tokenizer::Next(Token *tok) {
         tok->line = line_;
         tok->col = col;
         tok->file = &file_;
+        tok->includedFrom = &includedFrom_;
         tok->hasEscapes = false;
         if (c == '[' || c == ']') {
             tok->kind = c == '[' ? Token::OpenBracket : Token::CloseBracket;
