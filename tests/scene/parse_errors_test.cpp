@@ -349,6 +349,30 @@ TEST(ParseErrors, MiscellaneousDirectiveErrors) {
               "\"Transform\" needs exactly 16 numbers; expected ']' but got \"1\"");
 }
 
+TEST(ParseErrors, ColorSpaceRefusalIsLocated) {
+    // The scene builder refuses color spaces other than srgb at the ColorSpace directive.
+    std::string dir = test::TempDir("err_colorspace");
+    WriteFile(dir + "/cs.pbrt", "Film \"rgb\"\n  ColorSpace \"rec2020\"\nCamera \"perspective\"\nWorldBegin\n");
+    Diagnostics diag;
+    diag.quiet = true;
+    SceneDescription d = ParseSceneFile(dir + "/cs.pbrt", diag);
+    EXPECT_EQ(d.colorSpace, "rec2020");
+    EXPECT_EQ(d.colorSpaceLoc.ToString(), dir + "/cs.pbrt:2:3");
+    try {
+        BuildScene(d, diag, BuildOptions{});
+        FAIL() << "rec2020 was accepted";
+    } catch (SceneError &e) {
+        EXPECT_EQ(e.Format(), dir + "/cs.pbrt:2:3: error: ColorSpace \"rec2020\" is not supported\n"
+                                    "  ColorSpace \"rec2020\"\n  ^");
+    }
+    // A later ColorSpace that is not adopted (one per scene) leaves the first one's location.
+    SceneDescription two = ParseSceneString("ColorSpace \"dci-p3\"\nColorSpace \"rec2020\"\n", "two.pbrt", diag);
+    EXPECT_EQ(two.colorSpace, "dci-p3");
+    EXPECT_EQ(two.colorSpaceLoc.line, 1);
+    // The default has no location.
+    EXPECT_FALSE(ParseSceneString("WorldBegin\n", "none.pbrt", diag).colorSpaceLoc.file);
+}
+
 TEST(ParseErrors, SingularShapeTransformWarns) {
     Diagnostics diag;
     diag.quiet = true;

@@ -120,6 +120,7 @@ struct SceneDescription {
     CameraEntity camera;
     SceneEntity film, sampler, integrator, filter, accelerator;
     std::string colorSpace = "srgb";
+    FileLoc colorSpaceLoc;  // the ColorSpace directive that chose colorSpace (none for the default)
     std::vector<std::pair<std::string, FileLoc>> options;  // Option directives, as written
 
     // World.

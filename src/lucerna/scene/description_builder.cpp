@@ -211,8 +211,10 @@ void SceneDescriptionBuilder::ColorSpace(const std::string &name, const FileLoc 
         if (colorSpaceSet_ || rgbSeen_)
             diag_.Unsupported(loc, "ColorSpace \"" + name + "\"",
                               "one color space per scene; \"" + desc_.colorSpace + "\" is kept");
-        else
+        else {
             desc_.colorSpace = name;
+            desc_.colorSpaceLoc = loc;
+        }
     }
     colorSpaceSet_ = true;
 }
