@@ -14,7 +14,7 @@ constexpr int ExitOk = 0, ExitInternal = 1, ExitBadInput = 2, ExitInterrupted = 
 struct CommandTable {
     std::vector<std::pair<CLI::App *, std::function<int()>>> commands;
     void Add(CLI::App *sub, std::function<int()> run) { commands.emplace_back(sub, std::move(run)); }
-    int Run(CLI::App &app) {
+    int Run(CLI::App &) {
         for (auto &[sub, run] : commands)
             if (sub->parsed()) return run();
         return ExitBadInput;

@@ -167,9 +167,9 @@ std::string SummaryLine(const Prepared &prep, const RenderOutcome &o) {
                   IntegratorName(prep.settings.integrator));
     std::string line = buf;
     if (prep.settings.Regularizes()) {
-        std::snprintf(buf, sizeof buf, "  r0 %.4g  regularized connections %" PRIu64 " (%.2f%% of energy)",
+        std::snprintf(buf, sizeof buf, "  r0 %.4g  regularized connections %" PRIu64 " (%.2f%% of energy)  MNEE %" PRIu64,
                       prep.settings.regRadius, s.regConnections,
-                      s.totalEnergy > 0 ? 100.0 * s.regEnergy / s.totalEnergy : 0.0);
+                      s.totalEnergy > 0 ? 100.0 * s.regEnergy / s.totalEnergy : 0.0, s.mneeConnections);
         line += buf;
     }
     return line;
@@ -200,6 +200,7 @@ std::string StatsJson(const Prepared &prep, const RenderOutcome &o) {
         .Add("rejected_samples", s.rejected)
         .AddRaw("first_rejected", first.Str())
         .Add("regularized_connections", s.regConnections)
+        .Add("mnee_connections", s.mneeConnections)
         .Add("reg_radius", reg ? rs.regRadius : 0.0)
         .Add("reg_lambda", reg ? rs.regLambda : 0.0)
         .Add("reg_angle_degrees", reg ? rs.regAngle : 0.0)

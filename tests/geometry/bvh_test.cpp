@@ -115,7 +115,7 @@ TEST(BVH, StructureWithAndWithoutSpatialSplits) {
             CheckStructure(bvh, v, !splits, opt.maxLeafSize);
             std::printf("[ stats    ] %-8s %-6s %s\n", ns.name, splits ? "sbvh" : "binned",
                         test::StatsSummary(bvh.stats).c_str());
-            if (!splits) EXPECT_EQ(bvh.stats.references, bvh.stats.primitives);
+            if (!splits) { EXPECT_EQ(bvh.stats.references, bvh.stats.primitives); }
         }
     }
 }

@@ -48,7 +48,7 @@ TEST(Regularization, ConeGeometryAndPdfConversion) {
             EXPECT_NEAR(OneMinusConeCosForDisc(d, r) / (1 - cosS), 1.0, 1e-3) << d << " " << r;
             // Small-cone limit: the cap projects to a disc of radius r at distance d.
             double pdfA = ConePdfW(OneMinusConeCosForDisc(d, r)) / (double(d) * d);   // cos theta_z = 1
-            if (r / d < 0.01) EXPECT_NEAR(pdfA * M_PI * r * r, 1.0, 1e-3) << d << " " << r;
+            if (r / d < 0.01) { EXPECT_NEAR(pdfA * M_PI * r * r, 1.0, 1e-3) << d << " " << r; }
         }
     RegularizationParams p = RegularizationForPass(true, 0.64f, 0.1f, 1.f / 6, 63);  // N = 64
     EXPECT_NEAR(p.radius, 0.64 / 2, 1e-6);

@@ -55,7 +55,7 @@ TEST(PassDriver, RendersEachPassOnceInOrder) {
         EXPECT_EQ(b.requests[k].next, k + 1 < 5 ? k + 1 : NoPass);
         // The per-path settings of the pass: r_N = r0 N^-lambda with N = k + 1.
         EXPECT_FLOAT_EQ(b.requests[k].ps.reg.radius, std::pow(float(k + 1), -1.f / 6));
-        if (k + 1 < 5) EXPECT_FLOAT_EQ(b.requests[k].nextPs.reg.radius, std::pow(float(k + 2), -1.f / 6));
+        if (k + 1 < 5) { EXPECT_FLOAT_EQ(b.requests[k].nextPs.reg.radius, std::pow(float(k + 2), -1.f / 6)); }
     }
     EXPECT_EQ(film.passes, 5u);
     EXPECT_EQ(st.passesThisRun, 5u);

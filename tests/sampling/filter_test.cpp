@@ -187,7 +187,7 @@ TEST(Filter, WeightsAreFOverPdf) {
             int iy = std::min(int((s.p.y + f.radiusY) / (2 * f.radiusY) * ny), ny - 1);
             Float fc = FilterTableValue(f, ix, iy, nx, ny);
             EXPECT_NEAR(std::abs(s.weight), absIntegral, 1e-3 * absIntegral);
-            if (fc != 0) EXPECT_EQ(s.weight < 0, fc < 0);
+            if (fc != 0) { EXPECT_EQ(s.weight < 0, fc < 0); }
             negatives += s.weight < 0;
             sum += s.weight;
             sum2 += double(s.weight) * s.weight;

@@ -196,7 +196,7 @@ TEST(Gzip, CompressedPlyMeshes) {
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
     WriteFile(dir + "/quad.ply.gz", Gzip(ply));
     WriteFile(dir + "/quad2.ply", Gzip(ply));  // compressed, plain name
-    FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 4, 1};
+    FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 4, 1, nullptr};
     for (const char *name : {"/quad.ply.gz", "/quad2.ply"}) {
         PlyMesh m = ReadPlyMesh(dir + name, from);
         EXPECT_EQ(m.P.size(), 4u);

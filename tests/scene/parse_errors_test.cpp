@@ -43,7 +43,7 @@ static SceneError FileErrorOf(const std::string &path) {
 }
 
 static SceneError PlyErrorOf(const std::string &path) {
-    FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 12, 5};
+    FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 12, 5, nullptr};
     try {
         ReadPlyMesh(path, from);
     } catch (SceneError &e) {
@@ -451,7 +451,7 @@ TEST(ParseErrors, FuzzRegressionsGiveTheirExpectedOutcome) {
     std::set<std::string> files;
     for (const auto &entry : std::filesystem::directory_iterator(dir)) files.insert(entry.path().filename().string());
     for (const Expected &x : expected) EXPECT_EQ(files.count(x.file), 1u) << x.file << " is listed but not in " << dir;
-    const FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 7, 5};  // a plymesh reference
+    const FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 7, 5, nullptr};  // a plymesh reference
     for (const std::string &name : files) {
         SCOPED_TRACE(name);
         const Expected *x = nullptr;

@@ -83,12 +83,12 @@ class RecordingTarget final : public ParserTarget {
     }
     static std::string N(std::initializer_list<double> v) {
         std::string s;
-        for (double x : v) s += " " + Num(x);
+        for (double x : v) { s += ' '; s += Num(x); }
         return s;
     }
     static std::string N16(const double m[16]) {
         std::string s;
-        for (int i = 0; i < 16; ++i) s += " " + Num(m[i]);
+        for (int i = 0; i < 16; ++i) { s += ' '; s += Num(m[i]); }
         return s;
     }
     static std::string P(const ParsedParameterVector &ps) {

@@ -299,7 +299,7 @@ TEST(Parser, SharedScenesParse) {
         EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
         // Every named material used is defined and every plymesh loads.
         for (const ShapeEntity &sh : d.shapes) {
-            if (!sh.materialName.empty()) EXPECT_EQ(d.namedMaterials.count(sh.materialName), 1u);
+            if (!sh.materialName.empty()) { EXPECT_EQ(d.namedMaterials.count(sh.materialName), 1u); }
             if (sh.name == "plymesh") {
                 PlyMesh m = ReadPlyMesh(ResolvePath(sh.baseDirectory, sh.params.GetOneString("filename", "")), sh.loc);
                 EXPECT_GT(m.indices.size(), 0u);

@@ -32,7 +32,7 @@ static std::string WritePly(const std::string &name, const std::string &bytes) {
     return path;
 }
 
-static const FileLoc From{std::make_shared<const std::string>("scene.pbrt"), 7, 5};
+static const FileLoc From{std::make_shared<const std::string>("scene.pbrt"), 7, 5, nullptr};
 
 TEST(Ply, AsciiQuadWithNormalsAndUV) {
     std::string text =

@@ -72,7 +72,7 @@ struct TmpLeaf : TmpNode {
     uint32_t refs[1];   // `count` entries (allocated with room for all of them)
 };
 
-void *CreateNode(RTCThreadLocalAllocator alloc, unsigned int childCount, void *) {
+void *CreateNode(RTCThreadLocalAllocator alloc, unsigned int /*childCount*/, void *) {
     void *mem = rtcThreadLocalAlloc(alloc, sizeof(TmpInner), 16);
     TmpInner *n = new (mem) TmpInner;
     n->leaf = false;

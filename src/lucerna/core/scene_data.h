@@ -244,6 +244,7 @@ struct SceneView {
     Span<Float> rgbToSpecCoeffs, rgbToSpecZNodes;
     uint32_t rgbToSpecRes = 0;
     uint32_t illuminantTable = 0;   // the color space's standard illuminant (D65), in spectra
+    uint32_t transmitters = 0;      // materials that can transmit light (dielectric, thindielectric)
     CameraData camera;
     FilmData film;
     FilterData filter;

@@ -45,6 +45,10 @@ LU_INLINE Float RegularizedHitWeight(Float pdfConeW, Float pdfLightW) {
     return a + b > 0 ? a / (a + b) : 1;
 }
 
+// Manifold NEE (explicit, unbiased) against BSDF sampling of the same refractive chain, both in
+// area measure at the light point: pdfA is the technique's own, pdfOtherA the other's.
+LU_INLINE Float MneeWeight(Float pdfA, Float pdfOtherA) { return PowerHeuristic(pdfA, pdfOtherA); }
+
 // ---- The light pick of the explicit techniques ----
 
 struct LightPick {

@@ -31,14 +31,14 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 SampledSpectrum Le = InfiniteLightLe(scene.lights[li], scene, Normalize(ray.d), lambda);
                 if (Le.IsBlack()) continue;
                 Vec3f wi = Normalize(ray.d);
-                L += beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps);
+                L += beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps, lambda, tracer);
             }
             break;
         }
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
         if (si.areaLight != NoIndex) {
             SampledSpectrum Le = AreaLightL(scene.lights[si.areaLight], scene, si.p, si.n, si.uv, si.wo, lambda);
-            if (!Le.IsBlack()) L += beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps);
+            if (!Le.IsBlack()) L += beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, lambda, tracer);
         }
         BSDF bsdf;
         if (si.material == NoIndex || !MakeBSDF(scene.materials[si.material], si, lambda, scene, &bsdf)) {
@@ -51,7 +51,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         bool specular = bsdf.IsSpecular();
         ScatterVertex here = prev;   // becomes this vertex's record (SampleDirect, SampleBSDFDirection)
         SampledSpectrum Ld;
-        DirectTechnique t = SampleDirect(si, bsdf, specular, prev, lambda, sampler, scene, tracer, ps, st, &Ld, &here);
+        DirectTechnique t = SampleDirect(si, bsdf, specular, prev, depth, lambda, sampler, scene, tracer, ps, st, &Ld, &here);
         if (t != DirectTechnique::None) {
             SampledSpectrum c = beta * Ld;
             if (t == DirectTechnique::Regularized) st.regEnergy += c.Average();

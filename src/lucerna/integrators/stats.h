@@ -12,6 +12,7 @@ struct PathStats {
     uint64_t rays = 0;               // camera + extension + shadow rays
     uint64_t shadowRays = 0;
     uint64_t regConnections = 0;     // regularized connections that contributed
+    uint64_t mneeConnections = 0;    // manifold NEE connections that contributed
     Float regEnergy = 0;             // luminance-like sum (average over wavelengths) they carried
     Float totalEnergy = 0;           // same for the whole path
     bool invalid = false;            // the path's throughput became non-finite: the sample is rejected
@@ -27,7 +28,7 @@ LU_INLINE uint64_t RejectedSampleKey(int x, int y, int width, int depth) {
 
 // Counters of one pass (or of a tile or warp of it).
 struct PassCounters {
-    unsigned long long rays = 0, shadowRays = 0, regConnections = 0, rejected = 0;
+    unsigned long long rays = 0, shadowRays = 0, regConnections = 0, mneeConnections = 0, rejected = 0;
     unsigned long long firstRejected = ~0ull;   // smallest RejectedSampleKey
     double regEnergy = 0, totalEnergy = 0;
 
@@ -35,6 +36,7 @@ struct PassCounters {
         rays += s.rays;
         shadowRays += s.shadowRays;
         regConnections += s.regConnections;
+        mneeConnections += s.mneeConnections;
         regEnergy += double(s.regEnergy);
         totalEnergy += double(s.totalEnergy);
     }
@@ -46,6 +48,7 @@ struct PassCounters {
         rays += c.rays;
         shadowRays += c.shadowRays;
         regConnections += c.regConnections;
+        mneeConnections += c.mneeConnections;
         rejected += c.rejected;
         firstRejected = Min(firstRejected, c.firstRejected);
         regEnergy += c.regEnergy;

@@ -8,6 +8,7 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/integrators/mis.h"
+#include "lucerna/integrators/mnee.h"
 #include "lucerna/integrators/stats.h"
 #include "lucerna/materials/bsdf.h"
 #include "lucerna/sampling/sampler.h"
@@ -19,7 +20,11 @@ struct PathSettings {
     int maxDepth = 5;
     LightStrategy strategy = LightStrategy::MIS;
     RegularizationParams reg;   // this pass's kernel
+    bool mnee = false;          // manifold NEE through refractive chains (integrators/mnee.h)
 };
+
+// MNEE applies in this scene: the setting is on and some material can refract or pass light.
+LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) { return ps.mnee && scene.transmitters > 0; }
 
 // Shadow ray from p (offset along n towards the light) to the point pLight (or to infinity along wi).
 LU_INLINE Ray SpawnShadowRay(const Vec3f &p, const Vec3f &n, const Vec3f &wi, Float distance, const Vec3f &pLight) {
@@ -46,11 +51,54 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
 
 // ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd) ----
 
-// One light sample at a non-specular vertex, MIS-weighted against BSDF sampling.
+// ---- Manifold next-event estimation (integrators/mnee.h) ----
+
+// The light sample ls of NEE at the non-specular vertex si, whose straight shadow ray is blocked:
+// (budget: the vertices maxdepth leaves for the chain, so that MNEE adds the paths BSDF sampling
+// would find, no longer ones)
+// the refractive chain to the same light point, when the blockers are smooth dielectrics and
+// Newton's method finds it. Weighted against BSDF sampling of the same chain (area lights; the
+// power heuristic in area measure at the light point); the only technique for point and spot
+// lights. The regularized connection leaves these paths to MNEE (see SampleRegularized).
+template <typename Tracer>
+LU_HD SampledSpectrum SampleMnee(const SurfaceInteraction &si, const BSDF &bsdf, const LightPick &pick,
+                                 const Light &light, const LightLiSample &ls, const SampledWavelengths &lambda,
+                                 const SceneView &scene, const Tracer &tracer, LightStrategy strategy, int budget,
+                                 PathStats &st) {
+    if (ls.distance == Infinity) return SampledSpectrum(0);   // distant and infinite lights: no light point
+    bool delta = ls.isDelta;
+    if (!delta && light.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
+    MneeChain ch;
+    MneeThroughput tp;
+    if (!FindMneeChain(scene, tracer, si.p, si.n, ls.pLight, ls.nLight, lambda, &ch, &tp)) return SampledSpectrum(0);
+    if (ch.k + tp.passThrough > budget) return SampledSpectrum(0);   // longer than maxdepth allows
+    Vec3f w0 = Normalize((ch.k ? ch.v[0].p : ch.y) - si.p);
+    Vec3f wy = Normalize((ch.k ? ch.v[ch.k - 1].p : si.p) - ch.y);   // from the light towards the chain
+    SampledSpectrum f = bsdf.f(si.wo, w0) * AbsDot(w0, si.ns);
+    if (f.IsBlack()) return SampledSpectrum(0);
+    SampledSpectrum c;
+    if (delta) {   // E = I |d omega_y / dA_x0| per unit area of the surface at x0
+        Float cosG = AbsDot(w0, si.n), G = MneeGeometry(ch, false);
+        if (!(cosG > 0) || !(G > 0)) return SampledSpectrum(0);
+        c = f * tp.weight * PointLightIntensity(light, scene, wy, lambda) * (G / (cosG * pick.pmf));
+    } else {
+        Float G = MneeGeometry(ch, true);
+        Float pdfLightA = pick.pmf * ls.pdf * AbsDot(ls.nLight, ls.wi) / Sqr(ls.distance);
+        if (!(pdfLightA > 0) || !(G > 0)) return SampledSpectrum(0);
+        Float w = 1;
+        if (strategy == LightStrategy::MIS) w = MneeWeight(pdfLightA, bsdf.PDF(si.wo, w0) * tp.lobePdf * G);
+        c = f * tp.weight * AreaLightL(light, scene, ch.y, ch.nY, Vec2f(0, 0), wy, lambda) * (G * w / pdfLightA);
+    }
+    if (!c.IsBlack()) ++st.mneeConnections;
+    return c;
+}
+
+// One light sample at a non-specular vertex, MIS-weighted against BSDF sampling; through a
+// blocking refractive chain of at most mneeBudget vertices by MNEE (0: none).
 template <typename Tracer>
 LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
                                Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st,
-                               LightStrategy strategy = LightStrategy::MIS) {
+                               LightStrategy strategy = LightStrategy::MIS, int mneeBudget = 0) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
@@ -63,11 +111,51 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
     if (f.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
     ++st.rays; ++st.shadowRays;
-    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    if (tracer.Occluded(shadow))
+        return mneeBudget > 0 ? SampleMnee(si, bsdf, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
+                              : SampledSpectrum(0);
     Float pdfLightW = pick.pmf * ls.pdf;
     if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
     Float pdfBsdfW = bsdf.PDF(si.wo, ls.wi);
     return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+}
+
+// ---- The vertex record for MIS ----
+
+// The vertex a BSDF-sampled ray left from, as the emitter it hits needs it for MIS.
+struct ScatterVertex {
+    LightSampleContext ctx;
+    Float pdfBsdfW = 1;        // pdf of the sampled direction (proportional samples: the BSDF's PDF)
+    bool camera = true;        // the ray is a camera ray: nothing else can sample what it hits
+    bool specular = false;     // the sampled lobe is a Dirac lobe
+    bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there,
+    Float candidatePmf = 0;    // ... choosing among lights whose LightPMFs sum to this
+    bool allSpecular = true;   // every vertex of the path so far (from the camera) sampled a Dirac lobe
+    // MNEE: the chain of smooth transmissions since the last non-specular vertex x0, where NEE ran.
+    int8_t chainVertices = -1;      // refractive vertices since x0; -1: no such chain (no x0 yet, a
+                                    // reflection or another lobe since, or more than MaxMneeVertices)
+    uint32_t chainHash = 0;         // their surfaces in order (MneeShapeHash)
+    Vec3f chainFirst;               // the first of them
+    LightSampleContext chainStart;  // x0
+    Float chainBsdfPdfW = 0;        // BSDF sampling's pdf of the direction leaving x0
+    Float chainLobePdf = 1;         // product of the lobe selection probabilities since x0
+};
+
+// Whether MNEE from the chain start of `in` to light point y (normal nY) finds the chain of the
+// path that continues through specular vertex si along a transmission (refractive: a dielectric,
+// else a pass-through thin sheet), up to tol at the first refractive vertex.
+template <typename Tracer>
+LU_HD bool MneeCoversPath(const ScatterVertex &in, const SurfaceInteraction &si, bool refractive, Vec3f y, Vec3f nY,
+                          Float tol, const SampledWavelengths &lambda, const SceneView &scene, const Tracer &tracer,
+                          MneeChain *ch) {
+    if (in.chainVertices < 0) return false;
+    int k = in.chainVertices + (refractive ? 1 : 0);
+    if (k > MaxMneeVertices) return false;
+    uint32_t hash = refractive ? MneeShapeHash(in.chainHash, si.shape) : in.chainHash;
+    Vec3f first = in.chainVertices > 0 ? in.chainFirst : si.p;
+    MneeThroughput tp;
+    return FindMneeChain(scene, tracer, in.chainStart.p, in.chainStart.n, y, nY, lambda, ch, &tp) &&
+           MneeChainMatches(*ch, k, hash, first, tol);
 }
 
 // ---- The regularized connection (integrators/regularization.h) ----
@@ -115,11 +203,14 @@ LU_INLINE LightPick PickRegularizedCandidate(const SceneView &scene, Vec3f p, co
 // One light sample at a specular vertex among the candidates (total pmf candidatePmf > 0), tested
 // against the cone of every Dirac lobe; each lobe it falls in is weighted against the implicit
 // technique that picks that lobe (with the lobe's probability: lobe-aware MIS) and hits the light.
+// With MNEE on (in: the record of the path so far), a transmission lobe whose path MNEE would have
+// found from the chain's start to the same light point is left to MNEE (weight 0 here).
 template <typename Tracer>
-LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const SpecularLobe *lobes, int n,
-                                        Float candidatePmf, bool deltaOnly, const SampledWavelengths &lambda,
-                                        Sampler &sampler, const SceneView &scene, const Tracer &tracer,
-                                        const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
+LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SpecularLobe *lobes,
+                                        int n, Float candidatePmf, bool deltaOnly, const ScatterVertex &in,
+                                        bool mnee, const SampledWavelengths &lambda, Sampler &sampler,
+                                        const SceneView &scene, const Tracer &tracer, const RegularizationParams &rp,
+                                        LightStrategy strategy, PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     bool allowIncomplete = AllowIncompletePDF(strategy);
@@ -134,8 +225,19 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const Spec
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
     // f_reg |cos| / p = weight * phi / pdf per lobe; for delta lights the "pdf" is the pmf alone.
     SampledSpectrum sum(0);
+    int covered = -1;   // MNEE's verdict on the transmission lobe, computed once when needed
     for (int i = 0; i < n; ++i) {
         if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
+        if (mnee && (lobes[i].flags & BxDF_Transmission) && ls.distance != Infinity &&
+            (ls.isDelta || light.kind == LightKind::DiffuseArea)) {
+            if (covered < 0) {
+                MneeChain ch;
+                Float tol = 4 * rp.radius + 1e-3f * Distance(in.chainStart.p, si.p);
+                covered = MneeCoversPath(in, si, bsdf.kind == BxDFKind::Dielectric, ls.pLight, ls.nLight, tol, lambda,
+                                         scene, tracer, &ch) ? 1 : 0;
+            }
+            if (covered) continue;
+        }
         sum += lobes[i].weight * RegularizedConnectionWeight(lobes[i].pdf * pdfConeW, pdfLightW);
     }
     if (sum.IsBlack()) return SampledSpectrum(0);
@@ -148,19 +250,6 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const Spec
     return c;
 }
 
-// ---- The vertex record for MIS ----
-
-// The vertex a BSDF-sampled ray left from, as the emitter it hits needs it for MIS.
-struct ScatterVertex {
-    LightSampleContext ctx;
-    Float pdfBsdfW = 1;        // pdf of the sampled direction (proportional samples: the BSDF's PDF)
-    bool camera = true;        // the ray is a camera ray: nothing else can sample what it hits
-    bool specular = false;     // the sampled lobe is a Dirac lobe
-    bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there,
-    Float candidatePmf = 0;    // ... choosing among lights whose LightPMFs sum to this
-    bool allSpecular = true;   // every vertex of the path so far (from the camera) sampled a Dirac lobe
-};
-
 // ---- The explicit techniques at one vertex ----
 
 // Direct light at vertex si by every explicit technique that applies there: NEE at non-specular
@@ -168,15 +257,16 @@ struct ScatterVertex {
 // vertex the path came from; `out` (the record of this vertex for the next emitter hit) learns
 // whether the regularized connection could have sampled area and infinite lights, and among which.
 // Returns which technique ran: None when none applies (no random numbers are then consumed).
+// depth: the vertex's index on the path (1 = first hit), for the length MNEE may add.
 enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
 template <typename Tracer>
 LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
-                        const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                        int depth, const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                         const Tracer &tracer, const PathSettings &ps, PathStats &st, SampledSpectrum *Ld,
                         ScatterVertex *out) {
     out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
-        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
+        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0);
         return DirectTechnique::LightSample;
     }
     if (!ps.reg.enabled) return DirectTechnique::None;
@@ -187,7 +277,8 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     bool deltaOnly = in.allSpecular;
     Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, ps.reg.radius, deltaOnly, AllowIncompletePDF(ps.strategy));
     if (!(total > 0)) return DirectTechnique::None;
-    *Ld = SampleRegularized(si, lobes, n, total, deltaOnly, lambda, sampler, scene, tracer, ps.reg, ps.strategy, st);
+    *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, UsesMnee(ps, scene), lambda, sampler, scene, tracer,
+                            ps.reg, ps.strategy, st);
     out->regularized = !deltaOnly;
     out->candidatePmf = total;
     return DirectTechnique::Regularized;
@@ -197,10 +288,31 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
 
 // MIS weight of emitter `li` hit along wi at pLight (normal nLight) from vertex v, against the
 // explicit technique that could have sampled it there. Infinite lights: pLight = v.ctx.p + wi,
-// nLight = -wi, atInfinity = true.
-LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
-                                 Vec3f nLight, bool atInfinity, const PathSettings &ps) {
-    if (v.camera || (v.specular && !v.regularized)) return 1;
+// nLight = -wi, atInfinity = true. After a chain of smooth transmissions from a non-specular
+// vertex, MNEE is that technique where it finds this very chain to pLight (it re-runs MNEE's
+// deterministic solve: the partner of SampleMnee's weight); elsewhere the regularized connection.
+template <typename Tracer>
+LU_HD Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
+                             Vec3f nLight, bool atInfinity, const PathSettings &ps, const SampledWavelengths &lambda,
+                             const Tracer &tracer) {
+    if (v.camera) return 1;
+    if (v.specular && v.chainVertices >= 0 && !atInfinity && UsesMnee(ps, scene) && ps.strategy != LightStrategy::BSDFOnly &&
+        scene.lights[li].kind == LightKind::DiffuseArea) {
+        if (ps.strategy == LightStrategy::NEEOnly) return 0;
+        MneeChain ch;
+        MneeThroughput tp;
+        Float tol = 1e-3f * Distance(v.chainStart.p, v.chainVertices > 0 ? v.chainFirst : pLight) + 1e-6f;
+        if (FindMneeChain(scene, tracer, v.chainStart.p, v.chainStart.n, pLight, nLight, lambda, &ch, &tp) &&
+            MneeChainMatches(ch, v.chainVertices, v.chainHash, v.chainFirst, tol)) {
+            Vec3f ws = pLight - v.chainStart.p;
+            Float d = Length(ws);
+            ws = ws / d;
+            Float pdfLightA = LightPdfW(scene, li, v.chainStart, ws, pLight, nLight, AllowIncompletePDF(ps.strategy)) *
+                              AbsDot(nLight, ws) / Sqr(d);
+            return MneeWeight(v.chainBsdfPdfW * v.chainLobePdf * MneeGeometry(ch, true), pdfLightA);
+        }
+    }
+    if (v.specular && !v.regularized) return 1;
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW
         pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
@@ -223,6 +335,26 @@ LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsd
     v.pdfBsdfW = bs.pdfIsProportional ? bsdf.PDF(si.wo, bs.wi) : bs.pdf;
     v.camera = false;
     v.specular = bs.IsSpecular();
+    if (!bsdf.IsSpecular()) {   // NEE (and MNEE) ran here: a chain may start
+        v.chainVertices = v.specular ? -1 : 0;
+        v.chainHash = 0;
+        v.chainStart = MakeLightContext(si);
+        v.chainBsdfPdfW = v.pdfBsdfW;
+        v.chainLobePdf = 1;
+    } else if (v.chainVertices >= 0) {
+        bool refracts = bs.IsTransmission() && bsdf.kind == BxDFKind::Dielectric;
+        bool passes = bs.IsTransmission() && bsdf.kind == BxDFKind::ThinDielectric;
+        if (refracts && v.chainVertices < MaxMneeVertices) {
+            if (v.chainVertices == 0) v.chainFirst = si.p;
+            ++v.chainVertices;
+            v.chainHash = MneeShapeHash(v.chainHash, si.shape);
+            v.chainLobePdf *= bs.pdf;
+        } else if (passes) {
+            v.chainLobePdf *= bs.pdf;
+        } else {
+            v.chainVertices = -1;
+        }
+    }
     v.allSpecular = v.allSpecular && v.specular;
     v.regularized = v.specular && v.regularized;
     v.ctx = MakeLightContext(si);

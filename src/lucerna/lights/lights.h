@@ -43,7 +43,7 @@ LU_INLINE Float SpotFalloff(const Light &l, const Vec3f &wLight) {
 
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
 // emit only on the side n points to.
-LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f p, Vec3f n, Vec2f uv, Vec3f w,
+LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f /*p*/, Vec3f n, Vec2f /*uv*/, Vec3f w,
                                      const SampledWavelengths &lambda) {
     if (l.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
     if (!l.twoSided && Dot(n, w) < 0) return SampledSpectrum(0);

@@ -65,6 +65,7 @@ void AddCounters(RenderStats &stats, const PassCounters &c, int width) {
     stats.rays += c.rays;
     stats.shadowRays += c.shadowRays;
     stats.regConnections += c.regConnections;
+    stats.mneeConnections += c.mneeConnections;
     stats.regEnergy += c.regEnergy;
     stats.totalEnergy += c.totalEnergy;
     if (c.rejected == 0) return;

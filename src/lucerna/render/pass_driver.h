@@ -15,7 +15,7 @@
 namespace lu {
 
 struct RenderStats {
-    uint64_t samples = 0, rays = 0, shadowRays = 0, regConnections = 0;
+    uint64_t samples = 0, rays = 0, shadowRays = 0, regConnections = 0, mneeConnections = 0;
     double regEnergy = 0, totalEnergy = 0;
     uint64_t rejected = 0;      // non-finite or negative sample values kept off the film
     int firstRejectedX = -1, firstRejectedY = -1, firstRejectedDepth = -1;

@@ -83,6 +83,9 @@ struct BuildContext {
     const BuildOptions &opts;
     HostScene &scene;
 
+    BuildContext(const SceneDescription &d, Diagnostics &g, const BuildOptions &o, HostScene &s)
+        : desc(d), diag(g), opts(o), scene(s) {}
+
     // Textures by name (the last definition wins is not allowed: redefinitions are errors).
     std::map<std::string, const TextureEntity *> floatTextures, spectrumTextures;
     std::map<ImageKey, LoadedImage> imageCache;

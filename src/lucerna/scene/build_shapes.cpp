@@ -174,7 +174,7 @@ void CheckMesh(BuildContext &ctx, const ShapeEntity &sh, MeshData &m, const char
     }
 }
 
-std::vector<uint32_t> ToIndices(BuildContext &ctx, const ShapeEntity &sh, const std::vector<int> &v) {
+std::vector<uint32_t> ToIndices(BuildContext &, const ShapeEntity &sh, const std::vector<int> &v) {
     std::vector<uint32_t> r;
     r.reserve(v.size());
     for (int i : v) {

@@ -43,6 +43,8 @@ SceneView HostScene::View() const {
     v.rgbToSpecZNodes = Span<Float>{t.zNodes, t.res};
     v.rgbToSpecCoeffs = Span<Float>{t.coeffs, 3 * t.res * t.res * t.res * 3};
     v.illuminantTable = TableD65;
+    for (const Material &m : materials)
+        v.transmitters += m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric;
     v.camera = camera;
     v.film = film;
     v.filter = filter;

@@ -188,7 +188,7 @@ void SceneDescriptionBuilder::ActiveTransformEndTime(const FileLoc &loc) {
     state_.activeEnd = true;
 }
 
-void SceneDescriptionBuilder::TransformTimes(double start, double end, const FileLoc &loc) {
+void SceneDescriptionBuilder::TransformTimes(double /*start*/, double /*end*/, const FileLoc &loc) {
     Enter(Block::Options, "TransformTimes", loc);
     if (!warnedTransformTimes_) {
         warnedTransformTimes_ = true;
@@ -512,7 +512,7 @@ void SceneDescriptionBuilder::IncludeBegin(bool isImport, const FileLoc &loc) {
     pushFloor_ = pushed_.size();
 }
 
-void SceneDescriptionBuilder::IncludeEnd(bool isImport, const FileLoc &loc) {
+void SceneDescriptionBuilder::IncludeEnd(bool isImport, const FileLoc &) {
     if (!isImport) return;
     if (pushed_.size() > pushFloor_) {
         const PushedState &open = pushed_.back();

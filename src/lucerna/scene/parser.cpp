@@ -611,7 +611,7 @@ void ParseFile(ParserTarget &target, const std::string &filename, const ParseOpt
     bool corrupt = false;
     std::string why = ReadSceneText(filename, &text, &corrupt);
     // A corrupt compressed file is located at the file itself ("scene.pbrt.gz: error: ...").
-    if (corrupt) throw SceneError(FileLoc{std::make_shared<const std::string>(filename), 0, 0}, why);
+    if (corrupt) throw SceneError(FileLoc{std::make_shared<const std::string>(filename), 0, 0, nullptr}, why);
     if (!why.empty()) throw SceneError(FileLoc{}, "cannot read scene file \"" + filename + "\": " + why);
     Tokenizer tz(std::move(text), filename);
     Parser(target, options, budget).ParseMain(tz, filename);

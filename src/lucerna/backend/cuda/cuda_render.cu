@@ -38,6 +38,7 @@ PathKernel(const __grid_constant__ SceneView scene, const __grid_constant__ Path
     }
     // ---- Counters: warp reductions, one atomic per warp and counter ----
     unsigned long long rays = WarpSum(c.rays), shadow = WarpSum(c.shadowRays), reg = WarpSum(c.regConnections);
+    unsigned long long mnee = WarpSum(c.mneeConnections);
     unsigned long long rej = WarpSum(c.rejected), first = WarpMin(c.firstRejected);
     double regE = WarpSum(c.regEnergy), totalE = WarpSum(c.totalEnergy);
     if (((threadIdx.y * kBlockX + threadIdx.x) & 31) == 0) {
@@ -45,6 +46,7 @@ PathKernel(const __grid_constant__ SceneView scene, const __grid_constant__ Path
         if (rays) atomicAdd(&out->rays, rays);
         if (shadow) atomicAdd(&out->shadowRays, shadow);
         if (reg) atomicAdd(&out->regConnections, reg);
+        if (mnee) atomicAdd(&out->mneeConnections, mnee);
         if (regE != 0) atomicAdd(&out->regEnergy, regE);
         if (totalE != 0) atomicAdd(&out->totalEnergy, totalE);
         if (rej) {
