@@ -241,9 +241,12 @@ class Coordinator {
     std::thread thread_;
 };
 
-// Sums `n` doubles into rank 0 (in place there), in chunks that fit MPI's int counts.
+// Sums `n` doubles into rank 0 (in place there), in chunks of 8 MB: Open MPI's reduction allocates
+// a temporary buffer of the message size per call, and glibc maps one larger than its mmap
+// threshold (at most 32 MB) afresh each time; the page faults of a whole 1920x1080 film (66 MB)
+// made one reduction ~2 s on the 2-core test machine, 8 MB chunks ~0.2 s (docs/benchmarks.md).
 void ReduceSums(double *v, size_t n) {
-    constexpr size_t kChunk = size_t(1) << 26;
+    constexpr size_t kChunk = size_t(1) << 20;
     for (size_t off = 0; off < n; off += kChunk) {
         int count = int(std::min(kChunk, n - off));
         if (gSession.rank == 0)
@@ -503,6 +506,8 @@ RenderStats RunDistributed(const RenderSettings &settings, uint64_t checkpointKe
 }
 
 double TimeFilmReduction(size_t doubles, int repeats) {
+    if (!MpiSession::Active()) throw DistributedError("no MPI session");
+    gSession.completed = true;   // a whole collective exchange: MpiSession::Finish may finalize
     std::vector<double> v(doubles, 1.0);
     double sum = 0;
     for (int i = 0; i < repeats; ++i) {
