@@ -179,7 +179,7 @@ class Coordinator {
                 MPI_Status status;
                 Check(MPI_Iprobe(MPI_ANY_SOURCE, TagRequest, gSession.ctrl, &flag, &status), "MPI_Iprobe");
                 if (!flag) {
-                    usleep(100);
+                    usleep(500);
                     continue;
                 }
                 Request req;
