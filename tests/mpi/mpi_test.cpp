@@ -43,8 +43,8 @@ std::vector<std::string> Local(const std::vector<std::string> &args) {
 }
 
 std::vector<std::string> RenderArgs(const std::string &integrator, int spp, const std::string &out,
-                                    std::vector<std::string> extra = {}, int seed = 7) {
-    std::vector<std::string> a = {"render", kScene, "--res", "32x32", "--spp", std::to_string(spp), "--seed", std::to_string(seed),
+                                    std::vector<std::string> extra = {}, int seed = 7, const char *res = "32x32") {
+    std::vector<std::string> a = {"render", kScene, "--res", res, "--spp", std::to_string(spp), "--seed", std::to_string(seed),
                                   "--integrator", integrator, "-o", out};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
@@ -179,10 +179,11 @@ class MpiMatches : public ::testing::TestWithParam<const char *> {};
 TEST_P(MpiMatches, OneProcessWithTheSameSeedAndPassCount) {
     std::string integrator = GetParam();
     std::string dir = TempDir("mpi_match_" + integrator);
-    auto one = RunProcess(Local(RenderArgs(integrator, 24, dir + "/one.exr", {"-q", "--checkpoint", dir + "/one.ckpt"})));
+    // 64x64: enough work that rank 0 cannot finish every pass before rank 1 asks for its first.
+    auto one = RunProcess(Local(RenderArgs(integrator, 24, dir + "/one.exr", {"-q", "--checkpoint", dir + "/one.ckpt"}, 7, "64x64")));
     ASSERT_EQ(one.exitCode, 0) << one.output;
     auto two = RunProcess(MpiRun(2, RenderArgs(integrator, 24, dir + "/two.exr",
-                                               {"--checkpoint", dir + "/two.ckpt", "--checkpoint-every", "0.02"})));
+                                               {"--checkpoint", dir + "/two.ckpt", "--checkpoint-every", "0.02"}, 7, "64x64")));
     ASSERT_EQ(two.exitCode, 0) << two.output;
     std::vector<int> perRank;
     int reductions = 0;
@@ -195,7 +196,7 @@ TEST_P(MpiMatches, OneProcessWithTheSameSeedAndPassCount) {
     EXPECT_TRUE(SameCheckpoints(dir + "/two.ckpt", dir + "/one.ckpt"));
     EXPECT_TRUE(SameImages(dir + "/two.exr", dir + "/one.exr"));
     // The bound is not loose: another seed breaks it.
-    auto other = RunProcess(Local(RenderArgs(integrator, 24, dir + "/other.exr", {"-q"}, 8)));
+    auto other = RunProcess(Local(RenderArgs(integrator, 24, dir + "/other.exr", {"-q"}, 8, "64x64")));
     ASSERT_EQ(other.exitCode, 0) << other.output;
     EXPECT_FALSE(SameImages(dir + "/other.exr", dir + "/one.exr"));
 }

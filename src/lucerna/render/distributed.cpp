@@ -32,7 +32,11 @@ bool LaunchedByMpi() {
 #if !defined(LUCERNA_HAVE_MPI)
 
 bool HaveMpi() { return false; }
-MpiSession::MpiSession() {}
+MpiSession::MpiSession() {
+    if (LaunchedByMpi())
+        std::fprintf(stderr, "lucerna: warning: started by an MPI launcher, but this build has no MPI: every process "
+                             "renders the whole image on its own (rebuild with libopenmpi-dev installed)\n");
+}
 MpiSession::~MpiSession() {}
 int MpiSession::Finish(int rc) { return rc; }
 bool MpiSession::Active() { return false; }
