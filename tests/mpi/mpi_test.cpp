@@ -284,6 +284,25 @@ TEST(Mpi, DeadRankLeavesTheLastCheckpoint) {
     EXPECT_TRUE(SameImages(dir + "/resumed.exr", dir + "/ref.exr"));
 }
 
+// --time is one wall-clock budget for the job: rank 0 stops handing out blocks at it, and blocks are
+// sized to end by it (the job's seconds land just past the budget, not a block or a rank later).
+TEST(Mpi, TimeIsOneBudgetForTheJob) {
+    std::string dir = TempDir("mpi_time");
+    auto r = RunProcess(MpiRun(2, {"render", kScene, "--res", "32x32", "--time", "1", "-q", "-o", dir + "/t.exr",
+                                   "--stats-json", dir + "/t.json"}));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::stringstream js;
+    js << std::ifstream(dir + "/t.json").rdbuf();
+    std::smatch m;
+    std::string text = js.str();
+    ASSERT_TRUE(std::regex_search(text, m, std::regex("\"seconds\": ([0-9.eE+-]+)"))) << text;
+    double seconds = std::stod(m[1].str());
+    EXPECT_GE(seconds, 1.0);
+    EXPECT_LT(seconds, 1.6) << "blocks ran far past the budget";
+    EXPECT_NE(text.find("\"interrupted\": false"), std::string::npos) << text;
+    EXPECT_GT(std::stoi(Meta(dir + "/t.exr", "lucerna.spp")), 0);
+}
+
 // Bad input on every rank: the job exits with 2 and the rank's message.
 TEST(Mpi, MissingSceneIsBadInput) {
     std::string dir = TempDir("mpi_bad_input");
