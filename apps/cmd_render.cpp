@@ -12,6 +12,7 @@
 #include "apps/render_common.h"
 #include "lucerna/backend/cpu/cpu_render.h"
 #include "lucerna/image/image.h"
+#include "lucerna/render/distributed.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::app {
@@ -93,9 +94,11 @@ int RunRender(const RenderArgs &a) {
     RenderControl control;
     control.onPass = onPass;
     control.cancel = &gCancel;
+    control.syncSeconds = a.checkpoint.empty() ? 0 : a.checkpointEvery;   // under mpirun: reductions for the checkpoints
     RenderOutcome out;
     rc = RunBackend(prep, film, control, &out);
     if (rc != ExitOk) return rc;
+    if (!out.writer) return out.stats.interrupted ? ExitInterrupted : ExitOk;   // an MPI rank other than 0
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     saveCheckpoint(film, out.stats.seconds);
@@ -131,7 +134,10 @@ void RegisterRender(CLI::App &app, CommandTable &table) {
     sub->add_option("--checkpoint-every", args->checkpointEvery, "Seconds between checkpoints (default 60)")->check(CLI::PositiveNumber);
     sub->add_option("--resume", args->resume, "Continue a render from a checkpoint (up to --spp passes in total)");
     AddSettingOptions(sub, &args->settings);
-    table.Add(sub, [args] { return RunRender(*args); });
+    table.Add(sub, [args] {
+        MpiSession mpi;   // under mpirun (render/distributed.h); nothing otherwise
+        return mpi.Finish(RunRender(*args));
+    });
 }
 
 }  // namespace lu::app

@@ -16,6 +16,7 @@
 #include "lucerna/backend/cuda/device_buffer.h"
 #endif
 #include "lucerna/image/image.h"
+#include "lucerna/render/distributed.h"
 
 namespace lu::app {
 
@@ -116,7 +117,9 @@ int PrepareRender(const std::string &sceneFile, const std::string &res, const Se
     return ExitOk;
 }
 
-int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &control, RenderOutcome *out) {
+namespace {
+
+int RunLocalBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &control, RenderOutcome *out) {
 #if defined(LUCERNA_HAVE_CUDA)
     if (prep.settings.device == DeviceKind::CUDA) {
         try {
@@ -129,6 +132,34 @@ int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &contr
 #endif
         out->stats = RenderCPU(*prep.scene, prep.settings, film, control);
     out->passes = film.passes;
+    return ExitOk;
+}
+
+}  // namespace
+
+// Under mpirun: this rank's share through render/distributed.h; the sums end on rank 0.
+int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &control, RenderOutcome *out) {
+    if (!MpiSession::Active()) return RunLocalBackend(prep, film, control, out);
+    const FilmData &fd = prep.scene->film;
+    if (film.width != fd.width || film.height != fd.height) film.Resize(fd.width, fd.height);
+    int rc = ExitOk;
+    BackendFn backend = [&](const RenderSettings &s, FilmAccumulator &f, const RenderControl &c) {
+        RenderSettings keep = prep.settings;
+        prep.settings = s;
+        rc = RunLocalBackend(prep, f, c, out);
+        prep.settings = keep;
+        if (rc != ExitOk) throw DistributedError("rank " + std::to_string(MpiSession::Rank()) + ": the backend failed");
+        return out->stats;
+    };
+    try {
+        out->stats = RunDistributed(prep.settings, prep.checkpointKey, film, control, backend);
+    } catch (const DistributedError &e) {
+        std::fprintf(stderr, "lucerna: error: %s\n", e.what());
+        return ExitBadInput;
+    }
+    out->passes = film.passes;
+    out->writer = MpiSession::Rank() == 0;
+    if (MpiSession::Size() > 1) prep.deviceName += " (rank 0 of " + std::to_string(MpiSession::Size()) + " MPI ranks)";
     return ExitOk;
 }
 

@@ -35,9 +35,11 @@ int PrepareRender(const std::string &sceneFile, const std::string &res, const Se
 struct RenderOutcome {
     RenderStats stats;
     uint32_t passes = 0;          // total passes in the film
+    bool writer = true;           // writes the outputs (false: an MPI rank other than 0)
 };
 
-// Runs the chosen backend from film.passes up to settings.spp.
+// Runs the chosen backend from film.passes up to settings.spp; under mpirun, every rank's share of
+// the passes (render/distributed.h) with the sums and statistics on rank 0.
 int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &control, RenderOutcome *out);
 // EXR (with lucerna.* metadata, spp reached) and optionally PNG; atomic writes.
 void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const RenderOutcome &out, const std::string &path, bool png);

@@ -5,6 +5,7 @@ set -euo pipefail
 PKGS=(build-essential cmake ninja-build pkg-config
       libembree-dev libtbb-dev libopenexr-dev libpng-dev zlib1g-dev libcli11-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev
+      libopenmpi-dev openmpi-bin
       python3 python3-matplotlib python3-numpy
       clang libclang-rt-14-dev)
 missing=()

@@ -32,6 +32,7 @@ using PassCallback = std::function<bool(const FilmAccumulator &film, const Rende
 struct RenderControl {
     PassCallback onPass;                        // optional
     const std::atomic<bool> *cancel = nullptr;  // set (by SIGINT/SIGTERM): abandon the pass in flight
+    double syncSeconds = 0;   // distributed (render/distributed.h): seconds between film reductions; 0: at the end only
 };
 
 constexpr uint32_t NoPass = ~0u;
