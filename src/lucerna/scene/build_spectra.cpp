@@ -51,6 +51,7 @@ Spectrum NamedOrFileSpectrum(BuildContext &ctx, const std::string &name, const F
     std::error_code ec;
     if (std::filesystem::is_regular_file(path, ec)) {
         std::vector<double> lambda, value;
+        ctx.scene.inputFiles.push_back(path);
         if (!ReadSpectrumFile(path, &lambda, &value)) Fail(loc, Quoted(name) + ": unable to read a valid spectrum file");
         std::optional<Spectrum> s = ctx.Registry().FromPiecewise(lambda, value);
         if (!s) Fail(loc, Quoted(name) + ": invalid spectrum in file");

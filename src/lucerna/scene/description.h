@@ -132,6 +132,7 @@ struct SceneDescription {
     std::vector<InstanceUse> instances;
     std::vector<SceneEntity> media;                    // MakeNamedMedium (unsupported)
     std::string baseDirectory;                         // directory of the main file
+    std::vector<std::string> inputFiles;               // every file read: the main file, then each Include/Import
 };
 
 // Parses a pbrt-v4 scene file (following Include/Import). Throws SceneError on bad input.

@@ -669,6 +669,7 @@ void Parser::IncludeFile(TokenStream &ts, const Token &dir, const std::string &f
     std::string why = ReadFileBytes(path, &text, MaxSceneFileBytes);
     if (!why.empty())
         ts.Fail(dir, "cannot read " + std::string(isImport ? "imported" : "included") + " file \"" + path + "\": " + why);
+    desc_.inputFiles.push_back(path);
     auto sub = std::make_unique<Tokenizer>(std::move(text), path);
     includeChain_.push_back(canonical);
     if (!isImport) {
@@ -1059,7 +1060,9 @@ SceneDescription Run(Tokenizer &tz, const std::string &path, Diagnostics &diag, 
 
 SceneDescription ParseSceneFile(const std::string &filename, Diagnostics &diag, const ParseOptions &options) {
     std::unique_ptr<Tokenizer> tz = Tokenizer::FromFile(filename, FileLoc{});
-    return Run(*tz, filename, diag, options);
+    SceneDescription desc = Run(*tz, filename, diag, options);
+    desc.inputFiles.insert(desc.inputFiles.begin(), filename);
+    return desc;
 }
 
 SceneDescription ParseSceneString(const std::string &text, const std::string &filename, Diagnostics &diag,
