@@ -86,7 +86,7 @@ class CrcWriter {
 // Reads through a CRC-32, never past `limit` bytes (the file's size less its checksum).
 class CrcReader {
   public:
-    CrcReader(std::ifstream &f, const std::string &path, uint64_t limit, uLong crc)
+    CrcReader(std::istream &f, const std::string &path, uint64_t limit, uLong crc)
         : f_(f), path_(path), left_(limit), crc_(crc) {}
     void Get(void *data, size_t n, const char *what) {
         if (n > left_) Corrupt(path_, std::string("truncated in the ") + what);
@@ -115,7 +115,7 @@ class CrcReader {
     uint32_t Crc() const { return uint32_t(crc_); }
 
   private:
-    std::ifstream &f_;
+    std::istream &f_;
     const std::string &path_;
     uint64_t left_;
     uLong crc_;
@@ -163,6 +163,10 @@ void LoadCheckpoint(const std::string &path, FilmAccumulator *film, CheckpointIn
     std::error_code ec;
     uint64_t size = std::filesystem::file_size(path, ec);
     if (!f || ec) throw std::runtime_error(path + ": cannot open checkpoint" + (ec ? ": " + ec.message() : ""));
+    ReadCheckpoint(f, size, path, film, info);
+}
+
+void ReadCheckpoint(std::istream &f, uint64_t size, const std::string &path, FilmAccumulator *film, CheckpointInfo *info) {
     char magic[8];
     if (size < 8 || !f.read(magic, 8) || std::memcmp(magic, kMagicPrefix, 6) != 0)
         throw std::runtime_error(path + ": not a Lucerna checkpoint");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <istream>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,5 +49,7 @@ void SaveCheckpoint(const std::string &path, const FilmAccumulator &film, const 
 // truncated, longer than its header says, fails its checksum or holds non-finite sums; the film
 // and info are then unchanged.
 void LoadCheckpoint(const std::string &path, FilmAccumulator *film, CheckpointInfo *info);
+// The same from a stream of `size` bytes; `name` is the file named in the messages (fuzz/fuzz_checkpoint.cpp).
+void ReadCheckpoint(std::istream &in, uint64_t size, const std::string &name, FilmAccumulator *film, CheckpointInfo *info);
 
 }  // namespace lu
