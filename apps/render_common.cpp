@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/json.h"
 #include "lucerna/backend/cpu/cpu_render.h"
 #if defined(LUCERNA_HAVE_CUDA)
 #include "lucerna/backend/cuda/cuda_api.h"
@@ -24,17 +25,6 @@ namespace {
 uint64_t Fnv1a(const std::string &s, uint64_t h = 1469598103934665603ull) {
     for (unsigned char c : s) { h ^= c; h *= 1099511628211ull; }
     return h;
-}
-
-// A JSON string literal of s (quotes, backslashes and control characters escaped).
-std::string JsonQuote(const std::string &s) {
-    std::string out = "\"";
-    for (unsigned char c : s) {
-        if (c == '"' || c == '\\') { out += '\\'; out += char(c); }
-        else if (c < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); out += b; }
-        else out += char(c);
-    }
-    return out + "\"";
 }
 
 // "WxH" exactly: decimal digits, 'x' or 'X', decimal digits; both positive.
@@ -208,27 +198,32 @@ std::string StatsJson(const Prepared &prep, const RenderOutcome &o) {
     const RenderSettings &rs = prep.settings;
     bool reg = rs.Regularizes();
     double sec = std::max(1e-9, s.seconds);
-    std::ostringstream j;
-    j.precision(10);
-    j << "{\n  \"scene\": " << JsonQuote(prep.sceneFile) << ",\n  \"integrator\": " << JsonQuote(IntegratorName(rs.integrator))
-      << ",\n  \"device\": " << JsonQuote(prep.deviceName) << ",\n  \"settings\": {";
-    bool first = true;
-    for (const SettingInfo &info : RenderSettingInfos()) {
-        j << (first ? "" : ", ") << JsonQuote(info.name) << ": " << JsonQuote(RenderSettingValue(rs, info.name));
-        first = false;
-    }
-    j << "},\n  \"width\": " << prep.scene->film.width << ",\n  \"height\": " << prep.scene->film.height << ",\n  \"spp\": " << o.passes
-      << ",\n  \"seconds\": " << s.seconds << ",\n  \"samples\": " << s.samples << ",\n  \"samples_per_second\": "
-      << s.samples / sec << ",\n  \"rays\": " << s.rays << ",\n  \"shadow_rays\": " << s.shadowRays
-      << ",\n  \"rays_per_second\": " << s.rays / sec << ",\n  \"bvh_build_seconds\": " << s.buildSeconds
-      << ",\n  \"rejected_samples\": " << s.rejected << ",\n  \"first_rejected\": {\"x\": " << s.firstRejectedX
-      << ", \"y\": " << s.firstRejectedY << ", \"depth\": " << s.firstRejectedDepth << "},\n  \"regularized_connections\": "
-      << s.regConnections << ",\n  \"reg_radius\": " << (reg ? rs.regRadius : 0)
-      << ",\n  \"reg_lambda\": " << (reg ? rs.regLambda : 0)
-      << ",\n  \"reg_angle_degrees\": " << (reg ? rs.regAngle : 0)
-      << ",\n  \"regularized_energy_share\": " << (s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0)
-      << ",\n  \"interrupted\": " << (s.interrupted ? "true" : "false") << "\n}\n";
-    return j.str();
+    JsonObject settings, first, j;
+    for (const SettingInfo &info : RenderSettingInfos()) settings.Add(info.name, RenderSettingValue(rs, info.name));
+    first.Add("x", s.firstRejectedX).Add("y", s.firstRejectedY).Add("depth", s.firstRejectedDepth);
+    j.Add("scene", prep.sceneFile)
+        .Add("integrator", IntegratorName(rs.integrator))
+        .Add("device", prep.deviceName)
+        .AddRaw("settings", settings.Str())
+        .Add("width", prep.scene->film.width)
+        .Add("height", prep.scene->film.height)
+        .Add("spp", o.passes)
+        .Add("seconds", s.seconds)
+        .Add("samples", s.samples)
+        .Add("samples_per_second", s.samples / sec)
+        .Add("rays", s.rays)
+        .Add("shadow_rays", s.shadowRays)
+        .Add("rays_per_second", s.rays / sec)
+        .Add("bvh_build_seconds", s.buildSeconds)
+        .Add("rejected_samples", s.rejected)
+        .AddRaw("first_rejected", first.Str())
+        .Add("regularized_connections", s.regConnections)
+        .Add("reg_radius", reg ? rs.regRadius : 0.0)
+        .Add("reg_lambda", reg ? rs.regLambda : 0.0)
+        .Add("reg_angle_degrees", reg ? rs.regAngle : 0.0)
+        .Add("regularized_energy_share", s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0.0)
+        .Add("interrupted", s.interrupted);
+    return j.Pretty() + "\n";
 }
 
 }  // namespace lu::app

@@ -5,7 +5,7 @@
 # transforms, negative light scales, partial spectra, no lights, an empty file, corrupted and old
 # checkpoints) and the corpus kept from earlier runs in build-fuzz/fuzz-work.
 # Usage: fuzz/run.sh SECONDS [JOBS]   (JOBS > 1 runs that many targets at the same time)
-# Environment: TARGETS="fuzz_scene fuzz_build" (default: all four); RUNS=N stops each target
+# Environment: TARGETS="fuzz_scene fuzz_build" (default: all five); RUNS=N stops each target
 # after N executions instead of SECONDS (pass 0 for SECONDS); NICE=19 runs the fuzzers niced.
 # Crashes are written to build-fuzz/fuzz-work/crash-TARGET-*; minimize one with
 #   build-fuzz/fuzz/fuzz_scene -minimize_crash=1 -runs=20000 CRASHFILE
@@ -16,7 +16,7 @@ jobs=${2:-1}
 root=$(cd "$(dirname "$0")/.." && pwd)
 shared=$root/data   # the shared scenes (data/README.md)
 build=$root/build-fuzz
-targets=(${TARGETS:-fuzz_scene fuzz_ply fuzz_build fuzz_checkpoint})
+targets=(${TARGETS:-fuzz_scene fuzz_ply fuzz_gzip fuzz_build fuzz_checkpoint})
 
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DLUCERNA_FUZZ=ON -DLUCERNA_CUDA=OFF \
     -DLUCERNA_BENCH=OFF -DLUCERNA_TESTS=OFF -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -24,7 +24,7 @@ cmake --build "$build" --target "${targets[@]}" -j2
 
 work=$build/fuzz-work
 mkdir -p "$work"
-for d in seed-scene seed-ply seed-ckpt corpus-scene corpus-ply corpus-build corpus-checkpoint; do mkdir -p "$work/$d"; done
+for d in seed-scene seed-ply seed-ckpt seed-gzip corpus-scene corpus-ply corpus-gzip corpus-build corpus-checkpoint; do mkdir -p "$work/$d"; done
 # Seeds: the small shared scene files; PLY headers with small bodies (the small shared meshes
 # whole, the first 2 KiB of the large ones) and the hand-made files in fuzz/seeds.
 while IFS= read -r -d "" f; do cp -f "$f" "$work/seed-scene/$(basename "$(dirname "$f")")-$(basename "$f")"; done < <(find "$shared/scenes" -name "*.pbrt" -size -64k -print0 2>/dev/null)
@@ -36,7 +36,8 @@ while IFS= read -r -d '' f; do
 done < <(find "$shared/scenes" -name '*.ply' -print0 2>/dev/null)
 find "$shared/scenes" -name '*.ply' -size -20k -exec cp -f {} "$work/seed-ply/" \; 2>/dev/null || true
 cp -f "$root"/fuzz/seeds/*.ply "$work/seed-ply/"
-cp -f "$root"/fuzz/seeds/*.ckpt "$root"/fuzz/regressions/*.ckpt "$work/seed-ckpt/"
+cp -f "$root"/fuzz/seeds/*.gz "$work/seed-gzip/"
+cp -f "$root"/fuzz/seeds/*.ckpt "$work/seed-ckpt/"
 
 # Replay the regression inputs first: any crash here is a regression.
 for t in "${targets[@]}"; do
@@ -56,6 +57,7 @@ args_for() {
     case $1 in
         fuzz_scene) echo "corpus-scene seed-scene pbrt.dict 16384" ;;
         fuzz_ply) echo "corpus-ply seed-ply ply.dict 8192" ;;
+        fuzz_gzip) echo "corpus-gzip seed-gzip gzip.dict 4096" ;;
         fuzz_build) echo "corpus-build seed-scene pbrt.dict 16384" ;;
         fuzz_checkpoint) echo "corpus-checkpoint seed-ckpt '' 4096" ;;
     esac

@@ -14,16 +14,6 @@ namespace lu {
 namespace {
 
 #if defined(LUCERNA_HAVE_CUDA)
-#define LU_REQUIRE_GPU()                                                                      \
-    do {                                                                                      \
-        std::string why;                                                                      \
-        if (!CudaDeviceAvailable(&why)) GTEST_SKIP() << "no usable CUDA device: " << why;   \
-    } while (0)
-#else
-#define LU_REQUIRE_GPU() GTEST_SKIP() << "built without CUDA (LUCERNA_HAVE_CUDA unset)"
-#endif
-
-#if defined(LUCERNA_HAVE_CUDA)
 // The device contracts a*b+c into FMAs, so distances may differ from the host in the last bits
 // and a ray grazing an edge may rarely pick the neighbour.
 constexpr double kMaxDisagreement = 2e-4;

@@ -21,14 +21,6 @@ FilmAccumulator RenderWithBVHTracer(const HostScene &hs, RenderSettings settings
     return film;
 }
 
-std::unique_ptr<HostScene> LoadAt(const std::string &rel, int res) {
-    Diagnostics diag;
-    diag.quiet = true;
-    BuildOptions opts;
-    opts.resX = opts.resY = res;
-    return LoadScene(test::SharedPath("scenes/" + rel), diag, opts);
-}
-
 struct Case {
     const char *scene;
     const char *integrator;
@@ -37,9 +29,14 @@ struct Case {
 // Triangles only (diffuse); spheres with mirror and glass; conductors and sphere lights. Paths
 // bouncing between a convex mirror and a glass sphere magnify last-bit differences of the hit
 // points at every bounce, so in bs_c a few percent of the pixels take another path at 2 spp.
-const Case kCases[] = {{"bitterli-cornell-box/scene-v4.pbrt", "path", 0.995},
-                       {"smallvcm-cornell/smallvcm-bs_c.pbrt", "regpath", 0.85},
-                       {"bitterli-veach-mis/scene-v4.pbrt", "path", 0.99}};
+const Case kCases[] = {{"cornell-box", "path", 0.995}, {"bs_c", "regpath", 0.85}, {"veach-mis", "path", 0.99}};
+
+// The scene file of a case (relative to data/scenes/), from the one list.
+std::string SceneOf(const Case &c) {
+    const test::SharedScene *s = test::FindSharedScene(c.scene);
+    EXPECT_NE(s, nullptr) << c.scene;
+    return s ? s->scene.substr(std::string("scenes/").size()) : std::string();
+}
 constexpr int kRes = 48, kSpp = 8, kSeeds = 4;
 
 // Same seed, same sample values: a pixel differs only where some ray of its paths hit
@@ -47,7 +44,7 @@ constexpr int kRes = 48, kSpp = 8, kSeeds = 4;
 TEST(BVHTracerRender, SameSeedMatchesEmbreePerPixel) {
     for (const Case &c : kCases) {
         SCOPED_TRACE(c.scene);
-        auto scene = LoadAt(c.scene, kRes);
+        auto scene = test::LoadSharedSceneAt(SceneOf(c), kRes);
         RenderSettings job = test::SettingsFor(*scene, c.integrator, 2, 7);
         FilmAccumulator embree;
         RenderStats se = RenderCPU(*scene, job, embree);
@@ -79,7 +76,7 @@ TEST(BVHTracerRender, BlockMeansMatchEmbree) {
     double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
     for (const Case &c : kCases) {
         SCOPED_TRACE(c.scene);
-        auto scene = LoadAt(c.scene, kRes);
+        auto scene = test::LoadSharedSceneAt(SceneOf(c), kRes);
         std::vector<Image> embree, ours;
         for (int s = 0; s < kSeeds; ++s) {
             RenderSettings job = test::SettingsFor(*scene, c.integrator, kSpp, 100 + s);
@@ -99,7 +96,7 @@ TEST(BVHTracerRender, BlockMeansMatchEmbree) {
 
 // The comparison can fail: a 10% brighter image is caught at the same sample counts.
 TEST(BVHTracerRender, BlockComparisonDetectsABias) {
-    auto scene = LoadAt("bitterli-cornell-box/scene-v4.pbrt", kRes);
+    auto scene = test::LoadSharedSceneAt(SceneOf({"cornell-box", "path", 0}), kRes);
     std::vector<Image> a, b;
     for (int s = 0; s < kSeeds; ++s) {
         RenderSettings job = test::SettingsFor(*scene, "path", kSpp, 300 + s);

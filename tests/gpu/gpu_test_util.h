@@ -7,18 +7,42 @@
 
 #include "geometry/bvh_test_util.h"
 #include "lucerna/scene/builder.h"
+#if defined(LUCERNA_HAVE_CUDA)
+#include "lucerna/backend/cuda/cuda_api.h"
+#endif
+#include "support/shared_scenes.h"
 #include "support/test_support.h"
+
+// GPU tests skip, with the reason, where no CUDA device is usable (and only there).
+#if defined(LUCERNA_HAVE_CUDA)
+#define LU_REQUIRE_GPU()                                                                      \
+    do {                                                                                      \
+        std::string why;                                                                      \
+        if (!::lu::CudaDeviceAvailable(&why)) GTEST_SKIP() << "no usable CUDA device: " << why; \
+    } while (0)
+#else
+#define LU_REQUIRE_GPU() GTEST_SKIP() << "built without CUDA (LUCERNA_HAVE_CUDA unset)"
+#endif
 
 namespace lu::test {
 
-// The scene files Lucerna must render (shared/scenes/README.md).
+// The scene files Lucerna renders, from the one list (support/shared_scenes.h), relative to data/scenes/.
 inline const std::vector<std::string> &SharedSceneFiles() {
-    static const std::vector<std::string> files = {
-        "bitterli-cornell-box/scene-v4.pbrt",          "bitterli-veach-mis/scene-v4.pbrt",
-        "bitterli-veach-bidir/scene-v4.pbrt",          "bitterli-volumetric-caustic/scene-v4-nomedium.pbrt",
-        "bitterli-water-caustic/scene-v4.pbrt",        "pbrt-v3-caustic-glass/scene-v4.pbrt",
-        "smallvcm-cornell/smallvcm-bs_c.pbrt",         "smallvcm-cornell/smallvcm-bs_p.pbrt"};
+    static const std::vector<std::string> files = [] {
+        std::vector<std::string> f;
+        for (const SharedScene &s : RenderedSharedScenes()) f.push_back(s.scene.substr(std::string("scenes/").size()));
+        return f;
+    }();
     return files;
+}
+
+// A shared scene (relative to data/scenes/) at res x res pixels (res 0: its own resolution).
+inline std::unique_ptr<HostScene> LoadSharedSceneAt(const std::string &rel, int res) {
+    Diagnostics diag;
+    diag.quiet = true;
+    BuildOptions opts;
+    opts.resX = opts.resY = res;
+    return LoadScene(SharedPath("scenes/" + rel), diag, opts);
 }
 
 inline std::unique_ptr<HostScene> LoadSharedScene(const std::string &rel) {

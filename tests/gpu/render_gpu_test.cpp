@@ -22,24 +22,6 @@ namespace lu {
 namespace {
 
 #if defined(LUCERNA_HAVE_CUDA)
-#define LU_REQUIRE_GPU()                                                                      \
-    do {                                                                                      \
-        std::string why;                                                                      \
-        if (!CudaDeviceAvailable(&why)) GTEST_SKIP() << "no usable CUDA device: " << why;   \
-    } while (0)
-#else
-#define LU_REQUIRE_GPU() GTEST_SKIP() << "built without CUDA (LUCERNA_HAVE_CUDA unset)"
-#endif
-
-#if defined(LUCERNA_HAVE_CUDA)
-std::unique_ptr<HostScene> LoadAt(const std::string &rel, int res) {
-    Diagnostics diag;
-    diag.quiet = true;
-    BuildOptions opts;
-    opts.resX = opts.resY = res;
-    return LoadScene(test::SharedPath("scenes/" + rel), diag, opts);
-}
-
 // The scene on the device, built once for many renders.
 struct GpuScene {
     std::unique_ptr<HostScene> host;
@@ -63,7 +45,7 @@ TEST(GpuRender, MatchesCpuOnSharedScenes) {
     double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
     for (const std::string &file : test::SharedSceneFiles()) {
         SCOPED_TRACE(file);
-        GpuScene gs(LoadAt(file, kRes));
+        GpuScene gs(test::LoadSharedSceneAt(file, kRes));
         const FilmData &filmData = gs.host->View().film;
         for (const char *integ : integrators) {
             SCOPED_TRACE(integ);
@@ -124,7 +106,7 @@ TEST(GpuRender, SameSeedMatchesCpuPerPixel) {
     };
     for (const std::string &file : test::SharedSceneFiles()) {
         SCOPED_TRACE(file);
-        GpuScene gs(LoadAt(file, kRes));
+        GpuScene gs(test::LoadSharedSceneAt(file, kRes));
         for (const char *integ : {"path", "regpath"}) {
             RenderSettings settings = test::SettingsFor(*gs.host, integ, 2, 7);
             FilmAccumulator embree, bvh, gpu;
@@ -175,7 +157,7 @@ TEST(GpuRender, NanGuardRejectsAndCounts) {
 TEST(GpuRender, PassLoopContract) {
     LU_REQUIRE_GPU();
 #if defined(LUCERNA_HAVE_CUDA)
-    GpuScene gs(LoadAt("bitterli-cornell-box/scene-v4.pbrt", 32));
+    GpuScene gs(test::LoadSharedSceneAt("bitterli-cornell-box/scene-v4.pbrt", 32));
     RenderSettings job = test::SettingsFor(*gs.host, "regpath", 6, 3);
     const Sampler &smp = gs.host->sampler;
     FilmAccumulator full, part;

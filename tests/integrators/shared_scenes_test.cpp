@@ -1,4 +1,4 @@
-// Lucerna: every scene file named in ../shared/scenes/README.md renders (no error, no NaN pixel,
+// Lucerna: every scene file of the one list (support/shared_scenes.h, data/scenes/README.md) that Lucerna renders (no error, no NaN pixel,
 // no rejected sample), and the diffuse-only cornell-box renders bit-identically with path and
 // regpath for the same seed (regularization is selective: it costs nothing without specular
 // surfaces).
@@ -8,27 +8,19 @@
 #include <cstring>
 
 #include "integrators/render_helpers.h"
+#include "support/shared_scenes.h"
 
 namespace lu::test {
 
-namespace {
-const char *kScenes[] = {
-    "scenes/bitterli-cornell-box/scene-v4.pbrt",          "scenes/bitterli-veach-mis/scene-v4.pbrt",
-    "scenes/bitterli-veach-bidir/scene-v4.pbrt",          "scenes/bitterli-volumetric-caustic/scene-v4-nomedium.pbrt",
-    "scenes/bitterli-water-caustic/scene-v4.pbrt",        "scenes/pbrt-v3-caustic-glass/scene-v4.pbrt",
-    "scenes/smallvcm-cornell/smallvcm-bs_c.pbrt",         "scenes/smallvcm-cornell/smallvcm-bs_p.pbrt",
-};
-}  // namespace
+class SharedSceneRender : public ::testing::TestWithParam<SharedScene> {};
 
-class SharedScene : public ::testing::TestWithParam<const char *> {};
-
-TEST_P(SharedScene, RendersWithoutNaN) {
+TEST_P(SharedSceneRender, RendersWithoutNaN) {
     BuildOptions opts;
     opts.resX = 32;
     opts.resY = 32;
     Diagnostics diag;
     diag.quiet = true;
-    auto scene = LoadScene(SharedPath(GetParam()), diag, opts);
+    auto scene = LoadScene(SharedPath(GetParam().scene), diag, opts);
     for (bool reg : {false, true}) {
         auto r = RenderScene(*scene, 2, scene->settings.maxDepth, 1, 0, 0, reg, 0.05, 0.03);
         EXPECT_EQ(r.stats.rejected, 0u) << (reg ? "regpath" : "path");
@@ -41,7 +33,8 @@ TEST_P(SharedScene, RendersWithoutNaN) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(All, SharedScene, ::testing::ValuesIn(kScenes));
+INSTANTIATE_TEST_SUITE_P(All, SharedSceneRender, ::testing::ValuesIn(RenderedSharedScenes()),
+                         [](const auto &info) { return SharedSceneTestName(info.param); });
 
 TEST(SharedScenes, CornellBoxPathAndRegpathBitIdentical) {
     BuildOptions opts;

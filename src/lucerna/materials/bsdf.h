@@ -13,12 +13,14 @@ namespace lu {
 // One ideal (Dirac) lobe at a specular vertex: the BSDF contains weight * delta(wi - dir) / |cos wi|
 // (wi in render space). weight: Fresnel R for reflection; T (divided by eta^2 in Radiance mode)
 // for transmission; the complex Fresnel for a conductor; the slab R/T for a thin dielectric.
-// eta: relative index across a transmission (1 for reflection).
+// eta: relative index across a transmission (1 for reflection). pdf: the probability that
+// Sample_f picks this lobe (R / (R + T) or T / (R + T) for dielectrics, 1 for a conductor).
 struct SpecularLobe {
     Vec3f wi;
     SampledSpectrum weight;
     uint8_t flags = 0;
     Float eta = 1;
+    Float pdf = 1;
 };
 
 enum class BxDFKind : uint8_t { None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse };
@@ -148,19 +150,20 @@ struct BSDF {
         Vec3f wo = RenderToLocal(woRender);
         if (wo.z == 0) return 0;
         int n = 0;
-        auto add = [&](Vec3f wiLocal, const SampledSpectrum &w, uint8_t flags, Float eta) {
+        auto add = [&](Vec3f wiLocal, const SampledSpectrum &w, uint8_t flags, Float eta, Float pdf) {
             if (!w || wiLocal.z == 0) return;
             lobes[n].wi = LocalToRender(wiLocal);
             lobes[n].weight = w;
             lobes[n].flags = flags;
             lobes[n].eta = eta;
+            lobes[n].pdf = pdf;
             ++n;
         };
         Vec3f wr(-wo.x, -wo.y, wo.z);
         switch (kind) {
         case BxDFKind::Conductor:
             if (conductor.mfDistrib.EffectivelySmooth())
-                add(wr, FrComplex(AbsCosTheta(wo), conductor.eta, conductor.k), BxDF_SpecularReflection, 1);
+                add(wr, FrComplex(AbsCosTheta(wo), conductor.eta, conductor.k), BxDF_SpecularReflection, 1, 1);
             break;
         case BxDFKind::Dielectric:
         case BxDFKind::CoatedDiffuse: {
@@ -169,14 +172,15 @@ struct BSDF {
             Float cosO = CosTheta(wo);
             if (kind == BxDFKind::CoatedDiffuse) cosO = AbsCosTheta(wo);   // two-sided coat
             Float R = FrDielectric(cosO, d.eta), T = 1 - R;
-            add(wr, SampledSpectrum(R), BxDF_SpecularReflection, 1);
+            // Sample_f picks reflection with R / (R + T); a coated diffuse samples its coat the same way.
+            add(wr, SampledSpectrum(R), BxDF_SpecularReflection, 1, R / (R + T));
             if (kind == BxDFKind::Dielectric) {
                 Vec3f wt;
                 Float etap;
                 if (T > 0 && Refract(wo, Vec3f(0, 0, 1), d.eta, &etap, &wt)) {
                     Float w = T;
                     if (mode == TransportMode::Radiance) w /= Sqr(etap);
-                    add(wt, SampledSpectrum(w), BxDF_SpecularTransmission, etap);
+                    add(wt, SampledSpectrum(w), BxDF_SpecularTransmission, etap, T / (R + T));
                 }
             }
             break;
@@ -184,8 +188,8 @@ struct BSDF {
         case BxDFKind::ThinDielectric: {
             Float R, T;
             thinDielectric.RT(AbsCosTheta(wo), &R, &T);
-            add(wr, SampledSpectrum(R), BxDF_SpecularReflection, 1);
-            add(-wo, SampledSpectrum(T), BxDF_SpecularTransmission, 1);
+            add(wr, SampledSpectrum(R), BxDF_SpecularReflection, 1, R / (R + T));
+            add(-wo, SampledSpectrum(T), BxDF_SpecularTransmission, 1, T / (R + T));
             break;
         }
         default: break;

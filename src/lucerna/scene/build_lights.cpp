@@ -2,6 +2,7 @@
 // pbrt-v4's lights.cpp Create() functions: "scale" divided by SpectrumToPhotometric of the
 // emission, "power" / "illuminance" normalizations, and the power-proportional light sampler.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "lucerna/lights/equal_area.h"
@@ -10,6 +11,45 @@
 #include "lucerna/scene/light_build.h"
 
 namespace lu::build {
+
+// ---- Parameter checks ----
+
+namespace {
+
+std::string Number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", x);
+    return buf;
+}
+
+// "scale": any finite value >= 0 (0 turns the light off). A negative one would emit negative
+// radiance, which the film rejects sample by sample: the light would vanish without a word.
+Float GetScale(const ParameterDictionary &p, const FileLoc &loc, const std::string &owner) {
+    double scale = p.GetOneFloat("scale", 1);
+    if (!(scale >= 0)) Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must not be negative (got " + Number(scale) + ")");
+    return Float(scale);
+}
+
+// "power" / "illuminance": absent (-1) or positive. pbrt-v4 silently ignores a value <= 0 and
+// renders the light at its unnormalized "scale"; Lucerna refuses it.
+Float GetPhotometric(const ParameterDictionary &p, const std::string &name, const FileLoc &loc, const std::string &owner) {
+    if (!p.Has(name)) return -1;
+    double v = p.GetOneFloat(name, -1);
+    if (!(v > 0))
+        Fail(ParamLoc(p, name, loc), owner + ": " + Quoted(name) + " must be positive (got " + Number(v) +
+                                         "; use \"scale\" 0 to turn a light off)");
+    return Float(v);
+}
+
+bool IsFiniteMatrix(const Matrix4 &m) {
+    for (const auto &row : m.m)
+        for (Float x : row)
+            if (!std::isfinite(x)) return false;
+    return true;
+}
+bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
 
 // ---- Area lights ----
 
@@ -20,7 +60,7 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
     const ParameterDictionary &p = e.params;
     AreaLightParams a;
     std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
-    Float scale = Float(p.GetOneFloat("scale", 1));
+    Float scale = GetScale(p, e.loc, "AreaLightSource " + Quoted(e.name));
     a.twoSided = p.GetOneBool("twosided", false);
     if (!p.GetOneString("filename", "").empty())
         FailUnsupported(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\" with an image (\"filename\")");
@@ -28,7 +68,7 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
     // Scale so that the radiance is equivalent to 1 nit.
     Float photometric = ctx.Registry().ToPhotometric(a.L);
     a.scale = photometric > 0 ? scale / photometric : scale;
-    a.power = Float(p.GetOneFloat("power", -1));
+    a.power = GetPhotometric(p, "power", e.loc, "AreaLightSource " + Quoted(e.name));
     p.ReportUnused(ctx.diag, "AreaLightSource " + Quoted(e.name));
     return ctx.areaLights[index] = a;
 }
@@ -60,10 +100,10 @@ std::string LightPath(BuildContext &ctx, const std::string &filename) {
 void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     const ParameterDictionary &p = e.params;
     std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
-    Float scale = Float(p.GetOneFloat("scale", 1));
+    Float scale = GetScale(p, e.loc, "LightSource \"infinite\"");
     std::vector<Vec3f> portal = p.GetPoint3fArray("portal");
     std::string filename = p.GetOneString("filename", "");
-    Float E_v = Float(p.GetOneFloat("illuminance", -1));
+    Float E_v = GetPhotometric(p, "illuminance", e.loc, "LightSource \"infinite\"");
     if (!portal.empty()) FailUnsupported(ParamLoc(p, "portal", e.loc), "infinite light \"portal\"");
     l.renderFromLight = e.renderFromObject;
     if (filename.empty()) {
@@ -83,6 +123,8 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
         Fail(ParamLoc(p, "filename", e.loc), Quoted(filename) + ": image resolution (" + std::to_string(img.width) + ", " +
                                                  std::to_string(img.height) + ") is non-square; it is unlikely to be an "
                                                                               "equal-area environment map");
+    if (!IsFiniteMatrix(e.renderFromObject.mInv))
+        Fail(e.loc, "the transformation of this \"infinite\" light is not invertible: its directions are undefined");
     l.kind = LightKind::ImageInfinite;
     l.spectrum = IlluminantSpectrum();
     l.scale = scale / Photometric(ctx, IlluminantSpectrum());
@@ -119,13 +161,14 @@ void BuildLights(BuildContext &ctx) {
             FailUnsupported(e.loc, "MediumInterface " + Quoted(e.outsideMedium) + " for a light (participating media)");
         const ParameterDictionary &p = e.params;
         const Transform &ctm = e.renderFromObject;
+        const std::string owner = "LightSource " + Quoted(e.name);
         Light l;
         if (e.name == "point") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Point;
             l.spectrum = I ? *I : IlluminantSpectrum();
-            l.scale = Float(p.GetOneFloat("scale", 1)) / Photometric(ctx, l.spectrum);
-            Float phi_v = Float(p.GetOneFloat("power", -1));
+            l.scale = GetScale(p, e.loc, owner) / Photometric(ctx, l.spectrum);
+            Float phi_v = GetPhotometric(p, "power", e.loc, owner);
             if (phi_v > 0) l.scale *= phi_v / (4 * Pi);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             l.renderFromLight = ctm * TranslateTransform(from);
@@ -134,9 +177,14 @@ void BuildLights(BuildContext &ctx) {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Spot;
             l.spectrum = I ? *I : IlluminantSpectrum();
-            Float scale = Float(p.GetOneFloat("scale", 1));
+            Float scale = GetScale(p, e.loc, owner);
             Float coneAngle = Float(p.GetOneFloat("coneangle", 30));
             Float coneDelta = Float(p.GetOneFloat("conedeltaangle", 5));
+            if (!(coneAngle > 0 && coneAngle <= 180))
+                Fail(ParamLoc(p, "coneangle", e.loc), "spot light: \"coneangle\" must be in (0, 180] degrees (got " + Number(coneAngle) + ")");
+            if (!(coneDelta >= 0 && coneDelta <= coneAngle))
+                Fail(ParamLoc(p, "conedeltaangle", e.loc), "spot light: \"conedeltaangle\" must be in [0, coneangle] (got " +
+                                                               Number(coneDelta) + ")");
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
             if (!(LengthSquared(to - from) > 0)) Fail(e.loc, "spot light: \"from\" and \"to\" must differ");
@@ -147,7 +195,7 @@ void BuildLights(BuildContext &ctx) {
             l.cosFalloffEnd = std::cos(Radians(coneAngle));
             l.cosFalloffStart = std::cos(Radians(coneAngle - coneDelta));
             l.scale = scale / Photometric(ctx, l.spectrum);
-            Float phi_v = Float(p.GetOneFloat("power", -1));
+            Float phi_v = GetPhotometric(p, "power", e.loc, owner);
             if (phi_v > 0) {
                 Float k_e = 2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2);
                 if (k_e > 0) l.scale *= phi_v / k_e;
@@ -156,7 +204,7 @@ void BuildLights(BuildContext &ctx) {
             std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
             l.kind = LightKind::Distant;
             l.spectrum = L ? *L : IlluminantSpectrum();
-            Float scale = Float(p.GetOneFloat("scale", 1));
+            Float scale = GetScale(p, e.loc, owner);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
             if (!(LengthSquared(from - to) > 0)) Fail(e.loc, "distant light: \"from\" and \"to\" must differ");
@@ -165,7 +213,7 @@ void BuildLights(BuildContext &ctx) {
             l.renderFromLight = ctm * FromColumns(v1, v2, w);
             l.direction = Normalize(l.renderFromLight.ApplyVector(Vec3f(0, 0, 1)));
             l.scale = scale / Photometric(ctx, l.spectrum);
-            Float E_v = Float(p.GetOneFloat("illuminance", -1));
+            Float E_v = GetPhotometric(p, "illuminance", e.loc, owner);
             if (E_v > 0) l.scale *= E_v;
         } else if (e.name == "infinite") {
             BuildInfinite(ctx, e, l);
@@ -174,7 +222,12 @@ void BuildLights(BuildContext &ctx) {
         } else {
             Fail(e.loc, "unknown light type " + Quoted(e.name));
         }
-        p.ReportUnused(ctx.diag, "LightSource " + Quoted(e.name));
+        // A singular or projective CTM can leave a light without a position or direction.
+        if ((l.kind == LightKind::Point || l.kind == LightKind::Spot) && !IsFinite3(l.position))
+            Fail(e.loc, owner + ": the transformation sends the light's position to infinity");
+        if ((l.kind == LightKind::Spot || l.kind == LightKind::Distant) && !IsFinite3(l.direction))
+            Fail(e.loc, owner + ": the transformation is singular and collapses the light's direction");
+        p.ReportUnused(ctx.diag, owner);
         s.stats.lightsByType[e.name]++;
         if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
             s.infiniteLights.push_back(uint32_t(s.lights.size()));
@@ -227,6 +280,14 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
 
 void FinishLights(BuildContext &ctx) {
     HostScene &s = ctx.scene;
+    // pbrt-v4 warns too ("No light sources defined in scene; rendering a black image").
+    if (s.lights.empty()) {
+        FileLoc file;
+        if (!ctx.desc.filename.empty()) file.file = std::make_shared<const std::string>(ctx.desc.filename);
+        bool empty = s.shapes.empty() && ctx.desc.shapes.empty() && ctx.desc.instances.empty();
+        ctx.diag.Warning(file, empty ? "the scene has no shapes and no light sources; the image will be black"
+                                     : "the scene has no light sources; the image will be black");
+    }
     // pbrt-v4's Bounds3::BoundingSphere of the scene bounds.
     Vec3f center;
     Float radius = 0;
@@ -244,6 +305,30 @@ void FinishLights(BuildContext &ctx) {
     }
     s.lightCdf.clear();
     s.lightCdf = BuildLightCdf(s.View());
+    // When every light has zero power the CDF is uniform (pbrt-v4); a degenerate (zero-area)
+    // triangle must not be picked then: sampling it gives a NaN pdf. Meshes keep at least one
+    // triangle with area (build_shapes.cpp drops the others), so some light remains.
+    view = s.View();
+    std::vector<double> mass(s.lights.size());
+    double total = 0;
+    bool changed = false;
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const Light &l = s.lights[i];
+        mass[i] = double(s.lightCdf[i + 1]) - double(s.lightCdf[i]);
+        if (l.kind == LightKind::DiffuseArea && mass[i] > 0 && !(ShapeArea(view, view.shapes[l.shape], l.primitive) > 0)) {
+            mass[i] = 0;
+            changed = true;
+        }
+        total += mass[i];
+    }
+    if (changed && total > 0) {
+        double run = 0;
+        for (size_t i = 0; i < s.lights.size(); ++i) {
+            run += mass[i];
+            s.lightCdf[i + 1] = Float(run / total);
+        }
+        s.lightCdf.back() = 1;
+    }
 }
 
 }  // namespace lu::build

@@ -24,11 +24,28 @@ struct MeshData {
 struct Placement {
     const ShapeEntity *shape = nullptr;
     Transform renderFromObject;
+    // renderFromObject has no inverse (a zero scale: the parser filled mInv with NaN). Analytic
+    // shapes intersect in object space and are dropped; meshes lose their per-vertex normals.
+    bool singular = false;
+    bool firstUse = true;  // the first placement of this Shape directive (warnings are given once)
+    std::string where;     // "" at top level; " (object instance \"name\" used at FILE:LINE:COL)"
     bool reverseOrientation = false;
     bool analyticSwapsHandedness = false;  // handedness of the shape's own transform (instances: not the instance's)
     uint32_t material = NoIndex;
     const AreaLightParams *areaLight = nullptr;
 };
+
+bool IsFiniteMatrix(const Matrix4 &m) {
+    for (const auto &row : m.m)
+        for (Float x : row)
+            if (!std::isfinite(x)) return false;
+    return true;
+}
+
+// A warning about one Shape directive, given once (an instance used many times would repeat it).
+void ShapeWarning(BuildContext &ctx, const Placement &pl, const std::string &message) {
+    if (pl.firstUse) ctx.diag.Warning(pl.shape->loc, message + pl.where);
+}
 
 void ExpandBounds(Bounds3f &b, const Transform &t, const Vec3f &pMin, const Vec3f &pMax) {
     for (int i = 0; i < 8; ++i) {
@@ -57,26 +74,58 @@ uint32_t AddAreaLights(BuildContext &ctx, const Placement &pl, uint32_t shapeInd
 
 // Adds a triangle mesh in render space: vertices by renderFromObject, normals by its inverse
 // transpose and negated for ReverseOrientation (pbrt-v4's TriangleMesh constructor).
+// A mesh that keeps no area in render space (every triangle degenerate, e.g. under "Scale 0 0 0"
+// or a mesh lying in a plane the transformation collapses to a line) is dropped with a warning.
 void AddTriangles(BuildContext &ctx, const Placement &pl, MeshData &mesh) {
     HostScene &s = ctx.scene;
     const Transform &t = pl.renderFromObject;
+    const std::string &name = pl.shape->name;
+    // ---- Render-space geometry: finite positions and normals, some area ----
+    std::vector<Vec3f> P(mesh.P.size());
+    for (size_t i = 0; i < P.size(); ++i) {
+        P[i] = t.ApplyPoint(mesh.P[i]);
+        if (!IsFinite(P[i].x) || !IsFinite(P[i].y) || !IsFinite(P[i].z))
+            Fail(pl.shape->loc, name + ": vertex " + std::to_string(i) + " is not finite after the transformation" + pl.where);
+    }
+    uint32_t triangleCount = uint32_t(mesh.indices.size() / 3);
+    std::vector<Float> areas(triangleCount);
+    bool hasArea = false;
+    for (uint32_t i = 0; i < triangleCount; ++i) {
+        const Vec3f &p0 = P[mesh.indices[3 * i]], &p1 = P[mesh.indices[3 * i + 1]], &p2 = P[mesh.indices[3 * i + 2]];
+        areas[i] = 0.5f * Length(Cross(p1 - p0, p2 - p0));
+        hasArea = hasArea || areas[i] > 0;
+    }
+    if (!hasArea) {
+        ShapeWarning(ctx, pl, name + " has zero area" +
+                                  std::string(pl.singular ? " under its singular (non-invertible) transformation" : "") +
+                                  "; it is not rendered" + std::string(pl.areaLight ? " and emits no light" : ""));
+        return;
+    }
+    std::vector<Vec3f> N(mesh.N.size());
+    bool finiteNormals = !pl.singular;
+    for (size_t i = 0; i < N.size() && finiteNormals; ++i) {
+        N[i] = t.ApplyNormal(mesh.N[i]);
+        finiteNormals = IsFinite(N[i].x) && IsFinite(N[i].y) && IsFinite(N[i].z);
+    }
+    if (!N.empty() && !finiteNormals) {
+        ShapeWarning(ctx, pl, name + ": the transformation is not invertible; the per-vertex normals \"N\" are "
+                                     "discarded (the geometric normal is used)");
+        N.clear();
+    }
+
     TriangleMesh tm;
     tm.firstVertex = uint32_t(s.positions.size());
     tm.vertexCount = uint32_t(mesh.P.size());
     tm.firstIndex = uint32_t(s.indices.size());
-    tm.triangleCount = uint32_t(mesh.indices.size() / 3);
+    tm.triangleCount = triangleCount;
     tm.flipNormals = pl.reverseOrientation != t.SwapsHandedness();
-    for (const Vec3f &p : mesh.P) {
-        Vec3f q = t.ApplyPoint(p);
+    for (const Vec3f &q : P) {
         s.positions.push_back(q);
         s.bounds.Expand(q);
     }
-    if (!mesh.N.empty()) {
+    if (!N.empty()) {
         tm.normalOffset = uint32_t(s.normals.size());
-        for (const Vec3f &n : mesh.N) {
-            Vec3f m = t.ApplyNormal(n);
-            s.normals.push_back(pl.reverseOrientation ? -m : m);
-        }
+        for (const Vec3f &m : N) s.normals.push_back(pl.reverseOrientation ? -m : m);
     }
     if (!mesh.uv.empty()) {
         tm.uvOffset = uint32_t(s.uvs.size());
@@ -91,14 +140,8 @@ void AddTriangles(BuildContext &ctx, const Placement &pl, MeshData &mesh) {
     shape.primitiveCount = tm.triangleCount;
     uint32_t shapeIndex = uint32_t(s.shapes.size());
     if (pl.areaLight) {
-        std::vector<Float> areas(tm.triangleCount);
-        for (uint32_t i = 0; i < tm.triangleCount; ++i) {
-            if (!mesh.powerArea.empty()) { areas[i] = mesh.powerArea[i]; continue; }
-            const Vec3f &p0 = s.positions[tm.firstVertex + mesh.indices[3 * i]];
-            const Vec3f &p1 = s.positions[tm.firstVertex + mesh.indices[3 * i + 1]];
-            const Vec3f &p2 = s.positions[tm.firstVertex + mesh.indices[3 * i + 2]];
-            areas[i] = 0.5f * Length(Cross(p1 - p0, p2 - p0));
-        }
+        // Degenerate triangles get lights of zero power, which the light CDF never picks.
+        if (!mesh.powerArea.empty()) areas = mesh.powerArea;
         shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, areas);
     }
     s.triangleMeshes.push_back(tm);
@@ -247,6 +290,26 @@ void BuildBilinearMesh(BuildContext &ctx, const Placement &pl) {
     AddTriangles(ctx, pl, m);
 }
 
+// Adds the render-space box of an analytic shape's object-space box to the scene bounds; a
+// projective "Transform" that sends a corner to infinity is an error (the box goes to Embree).
+void AddBounds(BuildContext &ctx, const Placement &pl, const Vec3f &pMin, const Vec3f &pMax) {
+    for (int i = 0; i < 8; ++i) {
+        Vec3f p((i & 1) ? pMax.x : pMin.x, (i & 2) ? pMax.y : pMin.y, (i & 4) ? pMax.z : pMin.z);
+        Vec3f q = pl.renderFromObject.ApplyPoint(p);
+        if (!IsFinite(q.x) || !IsFinite(q.y) || !IsFinite(q.z))
+            Fail(pl.shape->loc, pl.shape->name + ": the transformation sends the shape to infinity" + pl.where);
+    }
+    ExpandBounds(ctx.scene.bounds, pl.renderFromObject, pMin, pMax);
+}
+
+// Spheres and disks are intersected in object space through the inverse transformation; under a
+// singular one they are flat (or a point, a segment) and pbrt-v4 cannot intersect them either.
+void DropSingular(BuildContext &ctx, const Placement &pl) {
+    ShapeWarning(ctx, pl, pl.shape->name + ": the transformation is singular (not invertible), so the shape is flat or "
+                                           "degenerate; it is not rendered" +
+                              std::string(pl.areaLight ? " and its area light is dropped" : ""));
+}
+
 void BuildSphere(BuildContext &ctx, const Placement &pl) {
     const ShapeEntity &sh = *pl.shape;
     const ParameterDictionary &p = sh.params;
@@ -258,12 +321,13 @@ void BuildSphere(BuildContext &ctx, const Placement &pl) {
     Float z0 = Clamp(Min(zmin, zmax), -radius, radius), z1 = Clamp(Max(zmin, zmax), -radius, radius);
     if (z0 > -radius || z1 < radius || Clamp(phimax, Float(0), Float(360)) < 360)
         FailUnsupported(sh.loc, "partial sphere (\"zmin\", \"zmax\", \"phimax\")");
+    if (pl.singular) return DropSingular(ctx, pl);
     HostScene &s = ctx.scene;
     Sphere sp;
     sp.renderFromObject = pl.renderFromObject;
     sp.radius = radius;
     sp.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
-    ExpandBounds(s.bounds, sp.renderFromObject, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
     Shape shape;
     shape.kind = ShapeKind::Sphere;
     shape.index = uint32_t(s.spheres.size());
@@ -289,6 +353,7 @@ void BuildDisk(BuildContext &ctx, const Placement &pl) {
     if (Clamp(phimax, Float(0), Float(360)) < 360) FailUnsupported(sh.loc, "partial disk (\"phimax\")");
     if (!(radius > 0) || inner < 0 || inner >= radius)
         Fail(sh.loc, "disk needs 0 <= innerradius < radius");
+    if (pl.singular) return DropSingular(ctx, pl);
     HostScene &s = ctx.scene;
     Disk d;
     d.renderFromObject = pl.renderFromObject;
@@ -296,7 +361,7 @@ void BuildDisk(BuildContext &ctx, const Placement &pl) {
     d.radius = radius;
     d.innerRadius = inner;
     d.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
-    ExpandBounds(s.bounds, d.renderFromObject, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
     Shape shape;
     shape.kind = ShapeKind::Disk;
     shape.index = uint32_t(s.disks.size());
@@ -310,6 +375,14 @@ void BuildDisk(BuildContext &ctx, const Placement &pl) {
     }
     s.disks.push_back(d);
     s.shapes.push_back(shape);
+}
+
+// A finite transformation is required (an instance's product of two can overflow); a singular one
+// sets pl.singular.
+void CheckTransform(Placement &pl, const FileLoc &loc) {
+    if (!IsFiniteMatrix(pl.renderFromObject.m))
+        Fail(loc, "the transformation of this " + Quoted(pl.shape->name) + " shape is not finite" + pl.where);
+    pl.singular = !IsFiniteMatrix(pl.renderFromObject.mInv);
 }
 
 void CheckMedia(const ShapeEntity &sh) {
@@ -351,6 +424,7 @@ void BuildShapes(BuildContext &ctx) {
         pl.renderFromObject = sh.renderFromObject;
         pl.reverseOrientation = sh.reverseOrientation;
         pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
+        CheckTransform(pl, sh.loc);
         std::string materialType;
         pl.material = ResolveShapeMaterial(ctx, sh, &materialType);
         if (sh.areaLightIndex >= 0) {
@@ -377,12 +451,15 @@ void BuildShapes(BuildContext &ctx) {
             Placement pl;
             pl.shape = &sh;
             pl.renderFromObject = use.renderFromInstance * sh.renderFromObject;
+            pl.firstUse = reported.insert(&sh).second;
+            pl.where = " (object instance " + Quoted(use.name) + " used at " + use.loc.ToString() + ")";
+            CheckTransform(pl, use.loc);
             pl.reverseOrientation = sh.reverseOrientation;
             // pbrt-v4 orients analytic shapes in instance space, then transforms the normal.
             pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
             pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
             // Area lights inside instances do not emit (pbrt-v4; the parser warns).
-            BuildOne(ctx, pl, reported.insert(&sh).second);
+            BuildOne(ctx, pl, pl.firstUse);
         }
     }
 }

@@ -1,6 +1,8 @@
 // Lucerna scene builder: spectrum-valued parameters ("rgb", "spectrum", "blackbody"), after
 // pbrt-v4's ParameterDictionary::extractSpectrumArray (paramdict.cpp).
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -8,6 +10,13 @@
 #include "lucerna/scene/build_internal.h"
 
 namespace lu::build {
+
+// A number as the user wrote it, near enough: "%g".
+static std::string Number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", x);
+    return buf;
+}
 
 Spectrum IlluminantSpectrum() {
     Spectrum s;
@@ -18,46 +27,95 @@ Spectrum IlluminantSpectrum() {
 }
 
 // pbrt-v4's PiecewiseLinearSpectrum::Read: whitespace-separated (lambda, value) pairs, '#'
-// comments to the end of the line; not normalized.
-static bool ReadSpectrumFile(const std::string &path, std::vector<double> *lambda, std::vector<double> *value) {
+// comments to the end of the line; not normalized. Returns "" or what is wrong with the file
+// (naming its line); *lines gets the line of each pair.
+static std::string ReadSpectrumFile(const std::string &path, std::vector<double> *lambda, std::vector<double> *value,
+                                    std::vector<int> *lines) {
     std::ifstream in(path);
-    if (!in) return false;
+    if (!in) return "cannot be opened";
     std::vector<double> v;
+    std::vector<int> at;
     std::string line;
-    while (std::getline(in, line)) {
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
         std::istringstream is(line);
         std::string tok;
         while (is >> tok) {
             char *end = nullptr;
             double d = std::strtod(tok.c_str(), &end);
-            if (end == tok.c_str() || *end != '\0') return false;
+            if (end == tok.c_str() || *end != '\0')
+                return "line " + std::to_string(lineNo) + ": " + Quoted(tok) + " is not a number";
+            if (!std::isfinite(d)) return "line " + std::to_string(lineNo) + ": " + Quoted(tok) + " is not a finite number";
             v.push_back(d);
+            at.push_back(lineNo);
         }
     }
-    if (v.empty() || v.size() % 2 != 0) return false;
+    if (v.empty()) return "has no (wavelength, value) pairs";
+    if (v.size() % 2 != 0) return "has an odd number of values (" + std::to_string(v.size()) + "): it needs (wavelength, value) pairs";
     for (size_t i = 0; i < v.size(); i += 2) {
-        if (i > 0 && v[i] <= v[i - 2]) return false;
+        if (i > 0 && !(v[i] > v[i - 2]))
+            return "line " + std::to_string(at[i]) + ": wavelengths are not increasing (" + Number(v[i - 2]) + " nm, then " +
+                   Number(v[i]) + " nm)";
         lambda->push_back(v[i]);
         value->push_back(v[i + 1]);
+        lines->push_back(at[i]);
     }
-    return true;
+    return "";
 }
 
-Spectrum NamedOrFileSpectrum(BuildContext &ctx, const std::string &name, const FileLoc &loc) {
+// (lambda, value) pairs of parameter `name` (inline or from `file`, lines[i] the file line of
+// pair i) as a tabulated spectrum, pbrt-v4's PiecewiseLinearSpectrum: 0 outside the range given.
+// Values that would render negative radiance or NaN are errors at loc: negative values, and
+// eta <= 0. Unbounded spectra (eta, k) that do not cover 360-830 nm are extended with their end
+// values (with a warning): 0 there would be an eta of 0, whose Fresnel term is NaN (in pbrt-v4
+// too); emission and reflectance keep pbrt-v4's 0.
+static Spectrum FromPairs(BuildContext &ctx, std::vector<double> lambda, std::vector<double> value,
+                          const std::string &name, SpectrumType type, const FileLoc &loc, const std::string &file = "",
+                          const std::vector<int> &lines = {}) {
+    std::string what = "spectrum " + Quoted(name) + (file.empty() ? std::string() : " from " + Quoted(file));
+    for (size_t i = 0; i < value.size(); ++i) {
+        std::string at = " at " + Number(lambda[i]) + " nm" + (lines.empty() ? std::string() : " (line " + std::to_string(lines[i]) + ")");
+        if (value[i] < 0) Fail(loc, what + " has a negative value " + Number(value[i]) + at);
+        if (type == SpectrumType::Unbounded && name == "eta" && !(value[i] > 0))
+            Fail(loc, what + ": the index of refraction must be positive, got " + Number(value[i]) + at);
+    }
+    if (type == SpectrumType::Unbounded && (lambda.front() > LambdaMin || lambda.back() < LambdaMax)) {
+        ctx.diag.Warning(loc, what + " covers " + Number(lambda.front()) + "-" + Number(lambda.back()) +
+                                  " nm only; extended with its end values to 360-830 nm (pbrt-v4 evaluates it as 0 "
+                                  "outside, which makes an index of refraction 0 and its Fresnel term NaN)");
+        if (lambda.front() > LambdaMin) {
+            lambda.insert(lambda.begin(), LambdaMin - 1);
+            value.insert(value.begin(), value.front());
+        }
+        if (lambda.back() < LambdaMax) {
+            lambda.push_back(LambdaMax + 1);
+            value.push_back(value.back());
+        }
+    }
+    std::optional<Spectrum> s = ctx.Registry().FromPiecewise(lambda, value);
+    if (!s) Fail(loc, "invalid " + what);
+    return *s;
+}
+
+// A named spectrum, or pbrt-v4's fallback: a spectrum file of that name (parameter `param`).
+static Spectrum NamedOrFile(BuildContext &ctx, const std::string &name, const FileLoc &loc, const std::string &param,
+                            SpectrumType type) {
     if (std::optional<Spectrum> s = ctx.Registry().Named(name)) return *s;
-    // Not a named spectrum: pbrt-v4 then tries a file of that name.
     std::string path = ResolvePath(ctx.desc.baseDirectory, name);
     std::error_code ec;
     if (std::filesystem::is_regular_file(path, ec)) {
         std::vector<double> lambda, value;
         ctx.scene.inputFiles.push_back(path);
-        if (!ReadSpectrumFile(path, &lambda, &value)) Fail(loc, Quoted(name) + ": unable to read a valid spectrum file");
-        std::optional<Spectrum> s = ctx.Registry().FromPiecewise(lambda, value);
-        if (!s) Fail(loc, Quoted(name) + ": invalid spectrum in file");
-        return *s;
+        std::vector<int> lines;
+        std::string error = ReadSpectrumFile(path, &lambda, &value, &lines);
+        if (!error.empty()) Fail(loc, "spectrum file " + Quoted(name) + " " + error);
+        return FromPairs(ctx, std::move(lambda), std::move(value), param, type, loc, name, lines);
     }
     Fail(loc, "unknown named spectrum " + Quoted(name));
+}
+
+Spectrum NamedOrFileSpectrum(BuildContext &ctx, const std::string &name, const FileLoc &loc) {
+    return NamedOrFile(ctx, name, loc, "", SpectrumType::Unbounded);
 }
 
 std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary &params, const std::string &name,
@@ -92,12 +150,10 @@ std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary
             lambda.push_back(p->numbers[i]);
             value.push_back(p->numbers[i + 1]);
         }
-        std::optional<Spectrum> s = ctx.Registry().FromPiecewise(lambda, value);
-        if (!s) Fail(p->loc, "invalid \"spectrum " + name + "\"");
-        return *s;
+        return FromPairs(ctx, std::move(lambda), std::move(value), name, type, p->loc);
     }
     if (p->strings.size() != 1) Fail(p->loc, "\"spectrum " + name + "\" needs one spectrum name or (lambda, value) pairs");
-    return NamedOrFileSpectrum(ctx, p->strings[0], p->loc);
+    return NamedOrFile(ctx, p->strings[0], p->loc, name, type);
 }
 
 }  // namespace lu::build

@@ -1,6 +1,7 @@
 // Lucerna CPU backend: Embree 3 scene construction and queries.
 #include "lucerna/backend/cpu/embree_scene.h"
 
+#include <cassert>
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
@@ -40,9 +41,12 @@ bool IntersectAnalytic(const SceneView &s, const Shape &shape, const Ray &r, Flo
     return IntersectDisk(s.disks[shape.index], r, tMax, t);
 }
 
+[[maybe_unused]] bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 void UserBounds(const RTCBoundsFunctionArguments *args) {
     auto *d = static_cast<const UserGeomData *>(args->geometryUserPtr);
     Bounds3f b = ShapeBounds(*d->view, d->view->shapes[d->shape]);
+    assert(IsFinite3(b.pMin) && IsFinite3(b.pMax) && "Embree user geometry: non-finite bounds");
     // Pad slightly: the bounds must enclose float-rounded hits.
     Vec3f pad = (b.pMax - b.pMin) * 1e-5f + Vec3f(1e-6f, 1e-6f, 1e-6f);
     args->bounds_o->lower_x = b.pMin.x - pad.x; args->bounds_o->lower_y = b.pMin.y - pad.y; args->bounds_o->lower_z = b.pMin.z - pad.z;
@@ -62,6 +66,7 @@ void UserIntersect(const RTCIntersectFunctionNArguments *args) {
         Float tfar = RTCRayN_tfar(rn, args->N, i);
         Float t;
         if (!IntersectAnalytic(*d->view, d->view->shapes[d->shape], r, tfar, &t)) continue;
+        assert(t >= 0 && t <= tfar && "Embree user geometry: hit distance NaN or out of the ray's range");
         RTCRayN_tfar(rn, args->N, i) = t;
         RTCHitN_geomID(hn, args->N, i) = args->geomID;
         RTCHitN_primID(hn, args->N, i) = 0;
@@ -117,6 +122,7 @@ EmbreeScene::EmbreeScene(const SceneView &s) : view_(&s) {
                                                                     3 * sizeof(float), m.vertexCount));
             for (uint32_t v = 0; v < m.vertexCount; ++v) {
                 const Vec3f &p = s.positions[m.firstVertex + v];
+                assert(IsFinite3(p) && "Embree triangle mesh: non-finite vertex");
                 vb[3 * v] = p.x; vb[3 * v + 1] = p.y; vb[3 * v + 2] = p.z;
             }
             auto *ib = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,

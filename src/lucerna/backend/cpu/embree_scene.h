@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <cassert>
 #include <vector>
 
 #include "lucerna/core/interaction.h"
@@ -36,8 +37,17 @@ class EmbreeScene {
     std::vector<EmbreeUserData> userData_;  // stable: reserved before use
 };
 
+// What Embree may be given (checked by assert in debug builds; NDEBUG, as in Release, compiles
+// the checks out): a finite origin, a finite nonzero direction, tMax >= 0 (infinity allowed).
+// A NaN there aborts inside Embree ("Assertion 'ray.valid()' failed") or silently loses hits.
+inline bool EmbreeValidRay(const Ray &r) {
+    return std::isfinite(r.o.x) && std::isfinite(r.o.y) && std::isfinite(r.o.z) && std::isfinite(r.d.x) &&
+           std::isfinite(r.d.y) && std::isfinite(r.d.z) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) && r.tMax >= 0;
+}
+
 // The queries are inline: the integrator calls them several times per sample.
 inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
+    assert(EmbreeValidRay(ray) && "EmbreeScene::Intersect: NaN/infinite ray");
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -62,6 +72,7 @@ inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
 }
 
 inline bool EmbreeScene::Occluded(const Ray &ray) const {
+    assert(EmbreeValidRay(ray) && "EmbreeScene::Occluded: NaN/infinite ray");
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;
