@@ -180,6 +180,30 @@ TEST(OutputPaths, OutputsThatAreInputsAreRefused) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/tex.exr"));
 }
 
+// An environment map (read by the infinite light, not by a texture) is an input too.
+TEST(OutputPaths, EnvironmentMapIsAnInput) {
+    std::string dir = TempDir("outpaths_envmap");
+    std::string env = dir + "/env.png", scene = dir + "/env.pbrt";
+    Image img;
+    img.width = img.height = 2;
+    img.channels = 3;
+    img.pixels.assign(12, 0.5f);
+    WritePNG(env, img);
+    std::ofstream(scene) << "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\n"
+                            "Sampler \"zsobol\" \"integer pixelsamples\" [ 1 ]\nWorldBegin\n"
+                            "LightSource \"infinite\" \"string filename\" \"env.png\"\n"
+                            "Shape \"sphere\" \"float radius\" [ 0.5 ]\n";
+    std::string before = FileBytes(env);
+    ProcessResult ok = Render({scene, "-o", dir + "/ok.exr"});
+    ASSERT_EQ(ok.exitCode, 0) << ok.output;
+    ProcessResult r = Render({scene, "-o", env});
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("-o " + env + " would overwrite the scene's input file " + env + ", which the render reads"),
+              std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("spp "), std::string::npos) << "rendered:\n" << r.output;
+    EXPECT_EQ(FileBytes(env), before);
+}
+
 // The default output name (Film "filename", else the scene's name) is checked like -o.
 TEST(OutputPaths, DefaultOutputIsChecked) {
     std::string dir = TempDir("outpaths_default");
