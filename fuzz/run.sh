@@ -6,7 +6,9 @@
 # checkpoints) and the corpus kept from earlier runs in build-fuzz/fuzz-work.
 # Usage: fuzz/run.sh SECONDS [JOBS]   (JOBS > 1 runs that many targets at the same time)
 # Environment: TARGETS="fuzz_scene fuzz_build" (default: all five); RUNS=N stops each target
-# after N executions instead of SECONDS (pass 0 for SECONDS); NICE=19 runs the fuzzers niced.
+# after N executions instead of SECONDS (pass 0 for SECONDS); NICE=19 runs the fuzzers niced;
+# TIMEOUT=S (default 10) is libFuzzer's per-input wall-clock limit: raise it for niced runs on a
+# loaded machine (at nice 19 under load 12 a 0.1 s-CPU input took 11 s of wall time).
 # Crashes are written to build-fuzz/fuzz-work/crash-TARGET-*; minimize one with
 #   build-fuzz/fuzz/fuzz_scene -minimize_crash=1 -runs=20000 CRASHFILE
 # and keep the result in fuzz/regressions/ (replayed here and by ctest -L fuzz in build-fuzz).
@@ -49,7 +51,7 @@ run() {  # target corpus seeds dict maxlen
     [ "${RUNS:-0}" != 0 ] && limit=(-runs="$RUNS")
     local dict=()
     [ -n "$4" ] && dict=(-dict="$root/fuzz/$4")
-    nice -n "${NICE:-0}" "$build/fuzz/$1" "${limit[@]}" -max_len="$5" -timeout=10 -rss_limit_mb=2048 \
+    nice -n "${NICE:-0}" "$build/fuzz/$1" "${limit[@]}" -max_len="$5" -timeout="${TIMEOUT:-10}" -rss_limit_mb=2048 \
         "${dict[@]}" -artifact_prefix="$work/crash-$1-" -print_final_stats=1 \
         "$work/$2" "$work/$3" > "$work/$1.log" 2>&1
 }
