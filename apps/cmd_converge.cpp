@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "apps/json.h"
 #include "apps/render_common.h"
 #include "lucerna/image/image.h"
@@ -101,6 +102,8 @@ std::string RunProgram(const std::vector<std::string> &argv) {
 }
 
 int RunConverge(const ConvergeArgs &a) {
+    InstallSignalHandlers();
+    SetExitStage("converging; the output folder is incomplete");
     if ((a.time > 0) == (a.spp > 0)) {
         std::fprintf(stderr, "lucerna converge: give exactly one of --time SECONDS or --spp N\n");
         return ExitBadInput;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::app {
@@ -16,6 +17,8 @@ struct InfoArgs {
 };
 
 int RunInfo(const InfoArgs &a) {
+    InstallSignalHandlers();
+    SetExitStage("reading the scene");
     Diagnostics diag;
     diag.quiet = true;  // warnings are part of the report
     std::unique_ptr<HostScene> scene;

@@ -1,6 +1,7 @@
 // Lucerna CLI: scene loading, settings and backend dispatch shared by `render` and `converge`.
 #include "apps/render_common.h"
 
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,20 @@ namespace {
 uint64_t Fnv1a(const std::string &s, uint64_t h = 1469598103934665603ull) {
     for (unsigned char c : s) { h ^= c; h *= 1099511628211ull; }
     return h;
+}
+
+// "WxH" exactly: decimal digits, 'x' or 'X', decimal digits; both positive.
+bool ParseResolution(const std::string &s, int *w, int *h) {
+    size_t x = s.find_first_of("xX");
+    if (x == std::string::npos) return false;
+    auto number = [](const std::string &t, int *v) {
+        if (t.empty() || t.size() > 9) return false;
+        for (char c : t)
+            if (c < '0' || c > '9') return false;
+        *v = std::stoi(t);
+        return *v > 0;
+    };
+    return number(s.substr(0, x), w) && number(s.substr(x + 1), h);
 }
 
 bool Given(const SettingOverrides &o, const std::string &name) {
@@ -53,10 +68,7 @@ int PrepareRender(const std::string &sceneFile, const std::string &res, const Se
     BuildOptions opts;
     if (!res.empty()) {
         int w = 0, h = 0;
-        char x = 0, rest = 0;
-        std::istringstream is(res);
-        if (!(is >> w >> x >> h) || (is >> rest) || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
-            int64_t(w) * h > (int64_t(1) << 27)) {
+        if (!ParseResolution(res, &w, &h) || int64_t(w) * h > (int64_t(1) << 27)) {
             std::fprintf(stderr, "lucerna: --res %s: expected WxH with positive sizes (at most 2^27 pixels)\n", res.c_str());
             return ExitBadInput;
         }
@@ -169,6 +181,15 @@ std::string DefaultOutputName(const Prepared &prep) {
     return f;
 }
 
+std::string PngPreviewPath(const std::string &output) {
+    return std::filesystem::path(output).replace_extension(".png").string();
+}
+
+std::string Lower(std::string s) {
+    for (char &c : s) c = char(std::tolower((unsigned char)c));
+    return s;
+}
+
 void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const RenderOutcome &out, const std::string &path, bool png) {
     Image img = film.Resolve(prep.scene->View().film);
     ImageMetadata meta;
@@ -182,10 +203,7 @@ void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const Rende
     auto parent = std::filesystem::path(path).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent);
     WriteImage(path, img, meta);
-    if (png && std::filesystem::path(path).extension() != ".png") {
-        std::string p = std::filesystem::path(path).replace_extension(".png").string();
-        WritePNG(p, img);
-    }
+    if (png && Lower(std::filesystem::path(path).extension().string()) != ".png") WritePNG(PngPreviewPath(path), img);
 }
 
 std::string SummaryLine(const Prepared &prep, const RenderOutcome &o) {

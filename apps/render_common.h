@@ -44,6 +44,9 @@ int RunBackend(Prepared &prep, FilmAccumulator &film, const RenderControl &contr
 // EXR (with lucerna.* metadata, spp reached) and optionally PNG; atomic writes.
 void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const RenderOutcome &out, const std::string &path, bool png);
 std::string DefaultOutputName(const Prepared &prep);
+// The sRGB preview --png writes beside an EXR output: the same name with ".png".
+std::string PngPreviewPath(const std::string &output);
+std::string Lower(std::string s);
 std::string SummaryLine(const Prepared &prep, const RenderOutcome &o);
 std::string StatsJson(const Prepared &prep, const RenderOutcome &o);
 

@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# Fresh Debian 12: install dependencies, build (Release + CUDA when nvcc exists), run the whole
-# test suite, then the sanitizer build of the unit tests and the fuzzers (bounded time).
-# Environment: FUZZ_SECONDS (default 60 per target), SKIP_SANITIZERS=1, SKIP_FUZZ=1.
+# Fresh Debian 12: install dependencies, build everything (Release: renderer, tests, benchmarks,
+# and the CUDA backend whenever nvcc exists), run the whole test suite, then the sanitizer build
+# of the unit tests and the fuzzers (bounded time).
+# Environment: FUZZ_SECONDS (default 60 per target), SKIP_SANITIZERS=1, SKIP_FUZZ=1,
+# LUCERNA_CUDA=AUTO|ON|OFF (default AUTO: compiled when nvcc is found).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh || exit 1
 start=$(date +%s)
 status=0
 step() { echo; echo "==== $* ($(( $(date +%s) - start ))s)"; }
 
+step "dependencies"
+scripts/setup.sh all || exit 1
+
 step "build (Release)"
-scripts/build.sh || exit 1
+# Every option explicit: build/ may have been configured by scripts/demo.sh (renderer only).
+scripts/build.sh -DLUCERNA_TESTS=ON -DLUCERNA_BENCH=ON -DLUCERNA_CUDA="${LUCERNA_CUDA:-AUTO}" || exit 1
 
 step "unit, integration and reference tests"
 ctest --test-dir build --output-on-failure -j "$(nproc)" --timeout 900 || status=1

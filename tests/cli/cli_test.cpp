@@ -14,55 +14,13 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/cli_support.h"
 #include "lucerna/image/image.h"
-#include "support/test_support.h"
 
 namespace lu::test {
 
 namespace {
-
-const std::string kBin = LucernaBinary();
-
-// Runs the binary with arguments; returns its exit status (or 128 + signal).
-int RunLucerna(const std::vector<std::string> &args, bool quietStderr = true, pid_t *pidOut = nullptr, bool wait = true) {
-    pid_t pid = fork();
-    if (pid == 0) {
-        std::vector<char *> argv;
-        argv.push_back(const_cast<char *>(kBin.c_str()));
-        for (auto &a : args) argv.push_back(const_cast<char *>(a.c_str()));
-        argv.push_back(nullptr);
-        if (quietStderr) { freopen("/dev/null", "w", stderr); freopen("/dev/null", "w", stdout); }
-        execv(kBin.c_str(), argv.data());
-        _exit(127);
-    }
-    if (pidOut) *pidOut = pid;
-    if (!wait) return 0;
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string WriteScene(const std::string &dir, int res = 48, int spp = 8) {
-    std::string path = dir + "/scene.pbrt";
-    std::ofstream(path) << "LookAt 0 1 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 50 ]\n"
-                           "Film \"rgb\" \"integer xresolution\" [ " << res << " ] \"integer yresolution\" [ " << res
-                        << " ]\nSampler \"zsobol\" \"integer pixelsamples\" [ " << spp << " ]\n"
-                           "Integrator \"path\" \"integer maxdepth\" [ 8 ]\n"
-                           "WorldBegin\nLightSource \"infinite\" \"rgb L\" [ 0.4 0.5 0.6 ]\n"
-                           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 8 8 8 ]\n"
-                           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ -0.3 2 -0.3  0.3 2 -0.3  0.3 2 0.3  -0.3 2 0.3 ]\n"
-                           "AttributeEnd\n"
-                           "AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nShape \"sphere\" \"float radius\" [ 0.6 ]\nAttributeEnd\n"
-                           "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
-                           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ -3 -0.6 -3  3 -0.6 -3  3 -0.6 3  -3 -0.6 3 ]\n";
-    return path;
-}
-
-bool SameImage(const Image &a, const Image &b) {
-    return a.width == b.width && a.height == b.height && a.channels == b.channels &&
-           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
-}
-
+const std::string &kBin = Bin();
 }  // namespace
 
 // regpath reports the radius it used: the default 0.04 x bounding-box diagonal (docs/regularization.md;

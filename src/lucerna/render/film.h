@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <istream>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,9 +42,14 @@ struct CheckpointInfo {
     uint64_t sceneHash = 0;      // identifies the scene + options the sums belong to
     double seconds = 0;          // render time so far
 };
-// Atomic (temporary file + rename). Throws std::runtime_error on I/O failure.
+// Format 2 (film.cpp): a version and a CRC-32 of every byte. Atomic (temporary file + rename).
+// Throws std::runtime_error naming the file on I/O failure.
 void SaveCheckpoint(const std::string &path, const FilmAccumulator &film, const CheckpointInfo &info);
-// Throws std::runtime_error with a clear message on a missing, corrupt or truncated file.
+// Throws std::runtime_error naming the file when it is missing, of another format version,
+// truncated, longer than its header says, fails its checksum or holds non-finite sums; the film
+// and info are then unchanged.
 void LoadCheckpoint(const std::string &path, FilmAccumulator *film, CheckpointInfo *info);
+// The same from a stream of `size` bytes; `name` is the file named in the messages (fuzz/fuzz_checkpoint.cpp).
+void ReadCheckpoint(std::istream &in, uint64_t size, const std::string &name, FilmAccumulator *film, CheckpointInfo *info);
 
 }  // namespace lu

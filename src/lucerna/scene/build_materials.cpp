@@ -27,6 +27,7 @@ std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirecto
 LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLinear, const FileLoc &loc) {
     ImageKey key{path, pngIsLinear};
     if (auto it = ctx.imageCache.find(key); it != ctx.imageCache.end()) return it->second;
+    ctx.scene.inputFiles.push_back(path);
     Image img;
     try {
         img = ReadImage(path, pngIsLinear);

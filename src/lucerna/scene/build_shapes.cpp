@@ -212,6 +212,7 @@ void BuildPlyMesh(BuildContext &ctx, const Placement &pl) {
         ctx.diag.Unsupported(ParamLoc(p, "displacement", sh.loc), "plymesh \"displacement\"", "the mesh is not displaced");
     }
     std::string path = ResolveScenePath(ctx, sh.baseDirectory, filename);
+    ctx.scene.inputFiles.push_back(path);
     PlyMesh ply = ReadPlyMesh(path, sh.loc, &ctx.diag);
     MeshData m;
     m.P = std::move(ply.P);

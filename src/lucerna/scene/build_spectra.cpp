@@ -105,6 +105,7 @@ static Spectrum NamedOrFile(BuildContext &ctx, const std::string &name, const Fi
     std::error_code ec;
     if (std::filesystem::is_regular_file(path, ec)) {
         std::vector<double> lambda, value;
+        ctx.scene.inputFiles.push_back(path);
         std::vector<int> lines;
         std::string error = ReadSpectrumFile(path, &lambda, &value, &lines);
         if (!error.empty()) Fail(loc, "spectrum file " + Quoted(name) + " " + error);

@@ -99,6 +99,7 @@ LoadedImage LoadTextureImage(BuildContext &ctx, const std::string &path, bool is
     std::string key = path + '\n' + std::to_string(int(enc.kind)) + ' ' + std::to_string(enc.gamma) + ' ' +
                       std::to_string(int(reduce));
     if (auto it = ctx.textureImageCache.find(key); it != ctx.textureImageCache.end()) return it->second;
+    ctx.scene.inputFiles.push_back(path);
     Image img;
     try {
         img = ReadImage(path, enc.kind != Encoding::SRGB);

@@ -353,6 +353,7 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
     using namespace build;
     auto scene = std::make_unique<HostScene>();
     BuildContext ctx{desc, diag, opts, *scene};
+    scene->inputFiles = desc.inputFiles;
 
     if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
         FailUnsupported(desc.colorSpaceLoc, "ColorSpace " + Quoted(desc.colorSpace));

@@ -41,6 +41,7 @@ class HostScene {
     RenderSettings settings;   // as the scene's Integrator and Sampler directives set them (r0 resolved)
     Sampler sampler;           // the Sampler directive with all its options (seed: settings.seed)
     std::string outputFilename;   // Film "filename" ("" when absent)
+    std::vector<std::string> inputFiles;   // every file the scene read: the description's, then PLY meshes, images, spectra
     SceneStats stats;
     SpectrumRegistry spectra;
     Bounds3f bounds;

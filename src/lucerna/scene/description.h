@@ -135,6 +135,7 @@ struct SceneDescription {
     std::vector<SceneEntity> media;                    // MakeNamedMedium (unsupported)
     std::string baseDirectory;                         // directory of the main file
     std::string filename;                              // the main file (whole-scene diagnostics)
+    std::vector<std::string> inputFiles;               // every file read: the main file, then each Include/Import
 };
 
 // Parses a pbrt-v4 scene file (following Include/Import). Throws SceneError on bad input.

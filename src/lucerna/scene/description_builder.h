@@ -73,6 +73,7 @@ class SceneDescriptionBuilder final : public ParserTarget {
 
     void IncludeBegin(bool isImport, const FileLoc &loc) override;
     void IncludeEnd(bool isImport, const FileLoc &loc) override;
+    void FileRead(const std::string &path) override { desc_.inputFiles.push_back(path); }
     void EndOfFiles() override;
 
   private:

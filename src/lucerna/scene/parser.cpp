@@ -465,6 +465,7 @@ void Parser::IncludeFile(TokenStream &ts, const Token &dir, const std::string &f
     std::string why = ReadSceneText(path, &text);
     if (!why.empty())
         ts.Fail(dir, "cannot read " + std::string(isImport ? "imported" : "included") + " file \"" + path + "\": " + why);
+    target_.FileRead(path);
     Tokenizer sub(std::move(text), path, loc);
     includeChain_.push_back(canonical);
     ParseFile(sub, DirectoryOf(path));
@@ -613,6 +614,7 @@ void ParseFile(ParserTarget &target, const std::string &filename, const ParseOpt
     // A corrupt compressed file is located at the file itself ("scene.pbrt.gz: error: ...").
     if (corrupt) throw SceneError(FileLoc{std::make_shared<const std::string>(filename), 0, 0, nullptr}, why);
     if (!why.empty()) throw SceneError(FileLoc{}, "cannot read scene file \"" + filename + "\": " + why);
+    target.FileRead(filename);
     Tokenizer tz(std::move(text), filename);
     Parser(target, options, budget).ParseMain(tz, filename);
 }

@@ -105,6 +105,8 @@ class ParserTarget {
     // refuse it), IncludeEnd after its last directive. The parser opens and reads the file.
     virtual void IncludeBegin(bool isImport, const FileLoc &loc) = 0;
     virtual void IncludeEnd(bool isImport, const FileLoc &loc) = 0;
+    // Each file the parser has read (the main file, then each Include/Import), before its directives.
+    virtual void FileRead(const std::string &path) {}
     // After the last directive of the main file.
     virtual void EndOfFiles() = 0;
 };

@@ -4,7 +4,8 @@
 
 #include "lucerna/util/common.h"
 
-#if (defined(__x86_64__) || defined(_M_X64)) && !defined(__CUDA_ARCH__) && defined(__GNUC__)
+// Not with clang (the fuzz builds): it refuses a non-const reference to a vector element.
+#if (defined(__x86_64__) || defined(_M_X64)) && !defined(__CUDA_ARCH__) && defined(__GNUC__) && !defined(__clang__)
 #include <emmintrin.h>
 #include <xmmintrin.h>
 #define LU_SPECTRUM_SSE 1
