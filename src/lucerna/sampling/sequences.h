@@ -1,6 +1,6 @@
 // Lucerna: the low-discrepancy sequences of pbrt-v4's global samplers (host and device): prime
 // bases and radical inverses (plain, digit-permuted, Owen-scrambled) for Halton, and Sobol'
-// generator matrices for 1024 dimensions, all computed at compile time (no data tables copied).
+// generator matrices for 1024 dimensions, computed from Lucerna's own lists (no tables copied).
 #pragma once
 
 #include "lucerna/sampling/hash.h"
