@@ -153,3 +153,109 @@ TEST(Camera, GetCameraSampleUsesFiveDimensions) {
         EXPECT_EQ(cs.pLens.y, lensU.y);
     }
 }
+
+// ---- Orthographic and spherical cameras ----
+
+TEST(OrthographicCamera, OriginsOnTheScreenWindowDirectionsAlongZ) {
+    // 200x100: default screen window [-2, 2] x [-1, 1]; raster (0,0) is the top-left corner.
+    CameraData c = MakeOrthographicCamera(Identity(), 200, 100, 0, 1e6f, nullptr);
+    EXPECT_EQ(c.kind, CameraKind::Orthographic);
+    struct P { float x, y, ox, oy; };
+    for (P p : {P{0, 0, -2, 1}, P{200, 100, 2, -1}, P{100, 50, 0, 0}, P{50, 25, -1, 0.5f}}) {
+        Ray r = Gen(c, p.x, p.y);
+        EXPECT_NEAR(r.o.x, p.ox, 1e-5);
+        EXPECT_NEAR(r.o.y, p.oy, 1e-5);
+        EXPECT_NEAR(r.o.z, 0, 1e-6);
+        EXPECT_NEAR(r.d.x, 0, 1e-7);
+        EXPECT_NEAR(r.d.y, 0, 1e-7);
+        EXPECT_NEAR(r.d.z, 1, 1e-7);
+    }
+    // An explicit screen window; a portrait image's default window [-1, 1] x [-2, 2].
+    const Float sw[4] = {0, 10, -5, 5};
+    CameraData w = MakeOrthographicCamera(Identity(), 100, 100, 0, 1e6f, sw);
+    EXPECT_NEAR(Gen(w, 0, 0).o.x, 0, 1e-5);
+    EXPECT_NEAR(Gen(w, 0, 0).o.y, 5, 1e-5);
+    EXPECT_NEAR(Gen(w, 100, 100).o.x, 10, 1e-5);
+    EXPECT_NEAR(Gen(w, 100, 100).o.y, -5, 1e-5);
+    CameraData portrait = MakeOrthographicCamera(Identity(), 50, 100, 0, 1e6f, nullptr);
+    EXPECT_NEAR(Gen(portrait, 0, 0).o.y, 2, 1e-5);
+    EXPECT_NEAR(Gen(portrait, 50, 0).o.x, 1, 1e-5);
+    // The camera transform moves origins and turns directions (camera +z -> render +x).
+    CameraData rigid = MakeOrthographicCamera(Rigid(), 200, 100, 0, 1e6f, nullptr);
+    Ray r = Gen(rigid, 0, 0);   // camera (-2, 1, 0)
+    EXPECT_NEAR(r.o.x, 1, 1e-5);
+    EXPECT_NEAR(r.o.y, 3, 1e-5);
+    EXPECT_NEAR(r.o.z, 5, 1e-5);
+    EXPECT_NEAR(r.d.x, 1, 1e-6);
+}
+
+TEST(OrthographicCamera, ThinLensFocusesAtTheFocalDistance) {
+    // Rays of one raster point through any lens point meet at z = focaldistance, above the
+    // pinhole origin; the lens points fill a disk of the lens radius around it.
+    CameraData c = MakeOrthographicCamera(Identity(), 64, 64, 0.25f, 3, nullptr);
+    RNG rng(5);
+    double maxR = 0;
+    for (int i = 0; i < 200; ++i) {
+        Vec2f u(rng.Uniform<float>(), rng.Uniform<float>());
+        Ray r = Gen(c, 16, 48, u);   // pinhole origin (-0.5, -0.5, 0)
+        EXPECT_NEAR(r.o.z, 0, 1e-6);
+        double rr = std::hypot(r.o.x + 0.5, r.o.y + 0.5);
+        EXPECT_LE(rr, 0.25 + 1e-5);
+        maxR = std::max(maxR, rr);
+        Float t = 3 / r.d.z;
+        EXPECT_NEAR(r.o.x + t * r.d.x, -0.5, 1e-4);
+        EXPECT_NEAR(r.o.y + t * r.d.y, -0.5, 1e-4);
+    }
+    EXPECT_GT(maxR, 0.2);
+}
+
+TEST(SphericalCamera, MappingsRoundTrip) {
+    for (CameraKind kind : {CameraKind::SphericalEqualArea, CameraKind::SphericalEquirect}) {
+        CameraData c = MakeSphericalCamera(Identity(), 64, 64, kind);
+        for (int y = 0; y < 64; y += 3)
+            for (int x = 0; x < 64; x += 5) {
+                Vec2f p(x + 0.37f, y + 0.61f);
+                Ray r = Gen(c, p.x, p.y);
+                EXPECT_EQ(r.o, Vec3f(0, 0, 0));
+                EXPECT_NEAR(Length(r.d), 1, 1e-5);
+                Vec2f uv = SphericalCameraImagePoint(kind, r.d);
+                EXPECT_NEAR(uv.x * 64, p.x, 2e-3) << int(kind) << " " << x << "," << y;
+                EXPECT_NEAR(uv.y * 64, p.y, 2e-3) << int(kind) << " " << x << "," << y;
+            }
+    }
+    // Equirectangular conventions (pbrt-v4: theta = pi v from camera +y, phi = 2 pi u from +x
+    // towards +z): the top row looks up (+y), the middle row at u = 0 along +x, u = 1/4 along +z.
+    CameraData e = MakeSphericalCamera(Identity(), 200, 100, CameraKind::SphericalEquirect);
+    EXPECT_NEAR(Gen(e, 100, 0).d.y, 1, 1e-5);
+    EXPECT_NEAR(Gen(e, 0, 50).d.x, 1, 1e-5);
+    EXPECT_NEAR(Gen(e, 50, 50).d.z, 1, 1e-5);
+    EXPECT_NEAR(Gen(e, 100, 100).d.y, -1, 1e-5);
+}
+
+TEST(SphericalCamera, EqualAreaPixelsCoverEqualSolidAngles) {
+    // Uniform directions land uniformly on the equal-area image (8x8 cells: chi-square-like bound),
+    // and not on the equirectangular one (its polar cells are small).
+    RNG rng(3);
+    const int n = 64000, cells = 8;
+    for (CameraKind kind : {CameraKind::SphericalEqualArea, CameraKind::SphericalEquirect}) {
+        std::vector<int> cnt(cells * cells, 0);
+        for (int i = 0; i < n; ++i) {
+            Vec3f d = SampleUniformSphere(Vec2f(rng.Uniform<float>(), rng.Uniform<float>()));
+            Vec2f uv = SphericalCameraImagePoint(kind, d);
+            cnt[size_t(std::min(int(uv.y * cells), cells - 1) * cells + std::min(int(uv.x * cells), cells - 1))]++;
+        }
+        double chi2 = 0, e = double(n) / (cells * cells);
+        for (int k : cnt) chi2 += (k - e) * (k - e) / e;
+        if (kind == CameraKind::SphericalEqualArea) EXPECT_LT(chi2, 130) << "63 dof";
+        else EXPECT_GT(chi2, 1000);
+    }
+    // The equal-area square's left edge is glued to itself mirrored ((0, v) ~ (0, 1 - v)), so the
+    // wrap of a point just outside it continues the sphere smoothly.
+    Vec3f a = SphericalCameraDirection(CameraKind::SphericalEqualArea, Vec2f(0, 0.3f));
+    Vec3f b = SphericalCameraDirection(CameraKind::SphericalEqualArea, Vec2f(0, 0.7f));
+    EXPECT_NEAR(Length(a - b), 0, 1e-5);
+    Vec3f in = SphericalCameraDirection(CameraKind::SphericalEqualArea, Vec2f(0.001f, 0.3f));
+    Vec3f out = SphericalCameraDirection(CameraKind::SphericalEqualArea, Vec2f(-0.001f, 0.3f));
+    EXPECT_LT(Length(in - out), 0.01f);
+    EXPECT_GT(Length(in - out), 1e-5f);
+}

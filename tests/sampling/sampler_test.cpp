@@ -20,7 +20,12 @@ struct Config {
 };
 
 const Config kConfigs[] = {{"independent", ""}, {"zsobol", "fastowen"}, {"zsobol", "owen"},
-                           {"zsobol", "permutedigits"}, {"paddedsobol", "fastowen"}, {"stratified", ""}};
+                           {"zsobol", "permutedigits"}, {"paddedsobol", "fastowen"}, {"stratified", ""},
+                           {"halton", "permutedigits"}, {"sobol", "fastowen"}, {"sobol", "owen"},
+                           {"sobol", "permutedigits"}};
+
+// Halton and Sobol take the position in the pixel from unrandomized dimensions 0 and 1 (pbrt-v4).
+bool GlobalKind(const char *name) { return std::string(name) == "halton" || std::string(name) == "sobol"; }
 
 Sampler Make(const char *name, int spp, const char *randomization = "", int seed = 0, int w = 64, int h = 48) {
     SamplerOptions o;
@@ -173,6 +178,7 @@ TEST(Sampler, DeterministicAndPixelDependent) {
             for (int k = 0; k < 10; ++k) {
                 ASSERT_EQ(d1.v[k], d2.v[k]) << c.name;
                 samePixel += d1.v[k] == d3.v[k];
+                if (GlobalKind(c.name) && (k == 7 || k == 8)) continue;   // seed-independent by design
                 sameSeed += d1.v[k] == d4.v[k];
                 ++total;
             }
@@ -201,16 +207,18 @@ TEST(Sampler, IndependentOfCallOrder) {
             Draws d = Draw(t, x, y, i);
             for (int k = 0; k < 10; ++k) ASSERT_EQ(d.v[k], ref[j].v[k]) << c.name;
         }
-        // Starting at a dimension equals consuming the dimensions before it.
+        // Starting at a dimension equals consuming the dimensions before it (Halton and Sobol:
+        // after their two pixel dimensions 0 and 1, which StartPixelSample skips, as pbrt-v4).
+        const int skip = GlobalKind(c.name) ? 2 : 0;
         for (int i = 0; i < 8; ++i) {
             Draws d = ref[size_t(2 * 32 + 1 * 8 + i)];  // pixel (1, 2)
-            s.StartPixelSample(1, 2, i, 3);
+            s.StartPixelSample(1, 2, i, 3 + skip);
             EXPECT_EQ(s.Get1D(), d.v[3]) << c.name;
-            s.StartPixelSample(1, 2, i, 5);
+            s.StartPixelSample(1, 2, i, 5 + skip);
             Vec2f u = s.Get2D();
             EXPECT_EQ(u.x, d.v[5]) << c.name;
             EXPECT_EQ(u.y, d.v[6]) << c.name;
-            EXPECT_EQ(s.dimension, 7);
+            EXPECT_EQ(s.dimension, 7 + skip);
         }
     }
 }
@@ -236,7 +244,8 @@ TEST(Sampler, IndicesPastSamplesPerPixel) {
         int same = 0;
         for (int i = 0; i < 16; ++i) same += pass0[i].x == pass1[i].x;
         EXPECT_LT(same, 3) << c.name;
-        if (std::string(c.name) != "independent" && std::string(c.name) != "stratified") {
+        // (Halton and Sobol continue their global sequence: a pixel's later samples are not a net.)
+        if (std::string(c.name) != "independent" && std::string(c.name) != "stratified" && !GlobalKind(c.name)) {
             std::string why;
             EXPECT_TRUE(IsNet(pass1, 4, &why)) << c.name << ": " << why;
         }
@@ -266,8 +275,25 @@ TEST(Sampler, MakeSamplerNamesAndReports) {
     EXPECT_NE(report.find("rounded down"), std::string::npos);
     report.clear();
     s = MakeSampler("sobol", 64, 0, 32, 32, {}, &report);
-    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
+    EXPECT_EQ(s.kind, SamplerKind::Sobol);
     EXPECT_EQ(s.SamplesPerPixel(), 64);
+    EXPECT_EQ(s.randomize, RandomizeStrategy::FastOwen);   // pbrt-v4's default for sobol
+    EXPECT_EQ(s.sobolLog2Scale, 5);
+    EXPECT_TRUE(report.empty()) << report;
+    s = MakeSampler("halton", 12, 0, 200, 20, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::Halton);
+    EXPECT_EQ(s.SamplesPerPixel(), 12);
+    EXPECT_EQ(s.randomize, RandomizeStrategy::PermuteDigits);   // pbrt-v4's default for halton
+    EXPECT_EQ(s.haltonBaseScale[0], 128);   // 2^7 (at most 128), 3^3 = 27 >= 20
+    EXPECT_EQ(s.haltonBaseScale[1], 27);
+    EXPECT_EQ(s.haltonBaseExponent[0], 7);
+    EXPECT_EQ(s.haltonBaseExponent[1], 3);
+    EXPECT_EQ((s.haltonMultInverse[0] * 27) % 128, 1);
+    EXPECT_EQ((s.haltonMultInverse[1] * 128) % 27, 1);
+    EXPECT_TRUE(report.empty()) << report;
+    report.clear();
+    s = MakeSampler("pmj02bn", 64, 0, 32, 32, {}, &report);
+    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
     EXPECT_TRUE(report.empty()) << report;   // the scene builder reports the substitution, located
     report.clear();
     s = MakeSampler("bogus", 6, 0, 32, 32, {}, &report);

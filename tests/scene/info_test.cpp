@@ -71,6 +71,35 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     EXPECT_EQ(RunInfo(dir + "/top.pbrt", &chained), 2) << chained;
     EXPECT_TRUE(Contains(chained, "In file included from " + dir + "/top.pbrt:2:1:\n" + dir + "/bad.pbrt:2:")) << chained;
 
+    // Every unsupported feature at once, each at its file:line, the included one with its chain;
+    // `lucerna render` refuses the scene with the same list.
+    std::ofstream(dir + "/lights.pbrt") << "# included\nLightSource \"goniometric\" \"string filename\" [ \"g.exr\" ]\n";
+    std::ofstream(dir + "/many.pbrt") << "Camera \"realistic\"\nFilm \"rgb\" \"integer xresolution\" [ 8 ] "
+                                         "\"integer yresolution\" [ 8 ]\nWorldBegin\nMaterial \"hair\"\n"
+                                         "Shape \"sphere\"\nInclude \"lights.pbrt\"\nShape \"curve\" \"point3 P\" "
+                                         "[ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n";
+    for (const char *command : {"info", "render"}) {
+        SCOPED_TRACE(command);
+        std::string many;
+        std::string cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna " + command + " '" + dir + "/many.pbrt' -o '" +
+                          dir + "/many.exr' 2>&1";
+        if (std::string(command) == "info") cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna info '" + dir + "/many.pbrt' 2>&1";
+        FILE *p = popen(cmd.c_str(), "r");
+        ASSERT_TRUE(p);
+        char buf[4096];
+        size_t n;
+        while ((n = fread(buf, 1, sizeof buf, p)) > 0) many.append(buf, n);
+        int status = pclose(p);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << many;
+        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:1:1: error: Camera \"realistic\" is not supported")) << many;
+        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:4:1: error: Material type \"hair\" is not supported")) << many;
+        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:7:1: error: Shape \"curve\" is not supported")) << many;
+        EXPECT_TRUE(Contains(many, "In file included from " + dir + "/many.pbrt:6:1:\n" + dir +
+                                       "/lights.pbrt:2:1: error: LightSource \"goniometric\" is not supported"))
+            << many;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/many.exr"));
+    }
+
     std::string media;
     EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 2) << media;
     EXPECT_TRUE(Contains(media, "MakeNamedMedium")) << media;

@@ -1,30 +1,79 @@
-// Lucerna: pbrt-v4's PerspectiveCamera (pinhole or thin lens) as plain data plus ray generation
-// (host and device), and pbrt-v4's GetCameraSample. Camera space is left-handed: +z forward,
+// Lucerna: pbrt-v4's PerspectiveCamera and OrthographicCamera (pinhole or thin lens) and
+// SphericalCamera (equal-area or equirectangular image) as plain data plus ray generation (host
+// and device), and pbrt-v4's GetCameraSample. Camera space is left-handed: +z forward,
 // +x right, +y up; raster space has (0,0) at the top-left image corner and y pointing down.
 #pragma once
 
 #include "lucerna/core/scene_data.h"
 #include "lucerna/camera/filter.h"
+#include "lucerna/lights/equal_area.h"
 #include "lucerna/sampling/sampler.h"
 #include "lucerna/sampling/warp.h"
 
 namespace lu {
 
+// pbrt-v4's WrapEqualAreaSquare: a point just outside [0,1]^2 (filter footprints at the image
+// border) folded back as the equal-area parameterization continues across the square's edges.
+LU_INLINE Vec2f WrapEqualAreaSquare(Vec2f uv) {
+    if (uv.x < 0) { uv.x = -uv.x; uv.y = 1 - uv.y; }
+    else if (uv.x > 1) { uv.x = 2 - uv.x; uv.y = 1 - uv.y; }
+    if (uv.y < 0) { uv.x = 1 - uv.x; uv.y = -uv.y; }
+    else if (uv.y > 1) { uv.x = 1 - uv.x; uv.y = 2 - uv.y; }
+    return uv;
+}
+
+// The spherical camera's camera-space direction of image point uv = pFilm / resolution.
+LU_INLINE Vec3f SphericalCameraDirection(CameraKind kind, Vec2f uv) {
+    Vec3f dir;
+    if (kind == CameraKind::SphericalEquirect) {
+        Float theta = Pi * uv.y, phi = 2 * Pi * uv.x;
+        dir = SphericalDirection(std::sin(theta), std::cos(theta), phi);
+    } else {
+        dir = EqualAreaSquareToSphere(WrapEqualAreaSquare(uv));
+    }
+    return Vec3f(dir.x, dir.z, dir.y);   // pbrt-v4 swaps y and z: the image's poles are camera +-y
+}
+
+// Its inverse: the image point uv in [0,1]^2 of a camera-space direction (for tests and tools).
+LU_INLINE Vec2f SphericalCameraImagePoint(CameraKind kind, Vec3f dCamera) {
+    Vec3f d = Normalize(Vec3f(dCamera.x, dCamera.z, dCamera.y));
+    if (kind == CameraKind::SphericalEquirect) {
+        Float theta = std::acos(Clamp(d.z, Float(-1), Float(1)));
+        Float phi = std::atan2(d.y, d.x);
+        if (phi < 0) phi += 2 * Pi;
+        return {phi / (2 * Pi), theta / Pi};
+    }
+    return EqualAreaSphereToSquare(d);
+}
+
 // The render-space ray through raster point pFilm (pixels; pixel (x, y) covers [x, x+1) x
-// [y, y+1)) with lens sample uLens in [0,1)^2 (ignored for a pinhole). Thin lens: the ray leaves
-// a uniform point of the lens disk (radius lensRadius, at the camera origin) towards the point
-// where the pinhole ray meets the plane z = focalDistance. ray->d is unit length, tMax = inf.
+// [y, y+1)) with lens sample uLens in [0,1)^2 (ignored for a pinhole and the spherical camera).
+// Perspective: from the camera origin through the raster point on the image plane; orthographic:
+// from the raster point on the plane z = 0 along +z. Thin lens (both): the ray leaves a uniform
+// point of the lens disk (radius lensRadius, centred on the pinhole ray's origin) towards the
+// point where the pinhole ray meets the plane z = focalDistance. Spherical: from the origin in
+// the direction of the image point pFilm / resolution. ray->d is unit length, tMax = inf.
 // Returns false only for a degenerate direction.
 LU_INLINE bool GenerateRay(const CameraData &c, Vec2f pFilm, Vec2f uLens, Ray *ray) {
-    Vec3f pCamera = c.cameraFromRaster.ApplyPoint(Vec3f(pFilm.x, pFilm.y, 0));
-    Vec3f o(0, 0, 0);
-    Vec3f d = Normalize(pCamera);
-    if (c.lensRadius > 0) {
-        Vec2f pLens = SampleUniformDiskConcentric(uLens) * c.lensRadius;
-        Float ft = c.focalDistance / d.z;
-        Vec3f pFocus = d * ft;
-        o = Vec3f(pLens.x, pLens.y, 0);
-        d = Normalize(pFocus - o);
+    Vec3f o(0, 0, 0), d;
+    if (c.kind == CameraKind::Perspective || c.kind == CameraKind::Orthographic) {
+        Vec3f pCamera = c.cameraFromRaster.ApplyPoint(Vec3f(pFilm.x, pFilm.y, 0));
+        if (c.kind == CameraKind::Perspective) {
+            d = Normalize(pCamera);
+        } else {
+            o = pCamera;
+            d = Vec3f(0, 0, 1);
+        }
+        if (c.lensRadius > 0) {
+            Vec2f pLens = SampleUniformDiskConcentric(uLens) * c.lensRadius;
+            Float ft = c.focalDistance / d.z;
+            Vec3f pFocus = o + d * ft;
+            o = Vec3f(o.x + pLens.x, o.y + pLens.y, 0);
+            d = Normalize(pFocus - o);
+        }
+    } else {
+        Vec2f uv(pFilm.x / Float(c.width), pFilm.y / Float(c.height));
+        d = SphericalCameraDirection(c.kind, uv);
     }
     Vec3f dRender = c.renderFromCamera.ApplyVector(d);
     Float len = Length(dRender);

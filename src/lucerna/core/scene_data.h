@@ -194,9 +194,13 @@ struct Distribution2D {
 
 // ---- Camera and film ----
 
+// pbrt-v4's cameras (all but "realistic"); spherical with its two image mappings.
+enum class CameraKind : uint8_t { Perspective, Orthographic, SphericalEqualArea, SphericalEquirect };
+
 struct CameraData {
+    CameraKind kind = CameraKind::Perspective;
     Transform renderFromCamera;   // camera space is left-handed, looking down +z (pbrt-v4)
-    Transform cameraFromRaster;
+    Transform cameraFromRaster;   // perspective, orthographic (unused by spherical)
     Float lensRadius = 0, focalDistance = 1e6f;
     int width = 0, height = 0;    // full film resolution (pixels)
 };

@@ -1,11 +1,13 @@
 // Lucerna: pixel samplers as one value type (host and device), after pbrt-v4's samplers.h:
-// IndependentSampler, ZSobolSampler (the default), PaddedSobolSampler and StratifiedSampler.
+// IndependentSampler, ZSobolSampler (the default), PaddedSobolSampler, StratifiedSampler,
+// HaltonSampler and SobolSampler (the global Sobol' sequence over the image).
 // Every value depends only on (pixel, sample index, dimension, seed) and the configuration,
 // never on call history across pixels or threads.
 #pragma once
 
 #include "lucerna/sampling/lowdiscrepancy.h"
 #include "lucerna/sampling/rng.h"
+#include "lucerna/sampling/sequences.h"
 #include "lucerna/util/vecmath.h"
 
 #if (defined(__x86_64__) || defined(_M_X64)) && defined(__GNUC__) && !defined(__CUDACC__)
@@ -159,7 +161,7 @@ inline uint8_t ZSobolSimdLevel() {
 }  // namespace detail
 #endif
 
-enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified };
+enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified, Halton, Sobol };
 
 // Usage per pixel sample: StartPixelSample(px, py, index), then Get1D / Get2D / GetPixel2D in a
 // fixed order; each call consumes 1 or 2 dimensions. Starting at dimension d gives the same
@@ -171,7 +173,9 @@ enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified 
 // exactly pbrt-v4's sample r, and pass k > 0 reuses pattern sample r under an independent
 // randomization (the seed mixed with k; "none" randomization becomes a digit permutation for
 // k > 0). Each pass is thus a fresh stratified set, so the estimate stays unbiased and keeps
-// converging. The independent sampler needs no passes (PCG32 stream offset index * 65536 + dim).
+// converging. The independent sampler needs no passes (PCG32 stream offset index * 65536 + dim),
+// nor do Halton and Sobol: their sample index selects the index-th point of the global sequence
+// that falls in the pixel, for any index, exactly as pbrt-v4 (which has no limit either).
 struct Sampler {
     SamplerKind kind = SamplerKind::ZSobol;
     RandomizeStrategy randomize = RandomizeStrategy::FastOwen;
@@ -182,6 +186,10 @@ struct Sampler {
     // Stratified: xPixelSamples * yPixelSamples == samplesPerPixel.
     int xPixelSamples = 4, yPixelSamples = 4;
     bool jitter = true;
+    // Halton: pbrt-v4's tiling of the image by 2^j x 3^k pixel blocks (j, k for up to 128 pixels).
+    int haltonBaseScale[2] = {1, 1}, haltonBaseExponent[2] = {0, 0}, haltonMultInverse[2] = {0, 0};
+    // Sobol: pixel indexing at scale 2^sobolLog2Scale (the resolution rounded up to a power of 2).
+    int sobolLog2Scale = 0;
     // ZSobol digit shuffles: 0 scalar, 1 AVX2, 2 AVX-512, 3 AVX-512 VBMI (set by MakeSampler from the host CPU;
     // device code always runs the scalar loop). Every level gives the same values.
     uint8_t simd = 0;
@@ -193,6 +201,7 @@ struct Sampler {
     uint32_t pass = 0;
     int passSeed = 0;         // seed, mixed with the pass for pass > 0
     uint64_t mortonIndex = 0; // ZSobol
+    uint64_t globalIndex = 0; // Halton, Sobol: index of the pixel sample in the global sequence
     RNG rng;                  // Independent, Stratified
 
     LU_HD int SamplesPerPixel() const { return samplesPerPixel; }
@@ -217,6 +226,35 @@ struct Sampler {
             mortonIndex = (EncodeMorton2(uint32_t(x), uint32_t(y)) << log2SamplesPerPixel) | uint64_t(sampleIndex);
             break;
         }
+        case SamplerKind::Halton: {
+            pass = 0;
+            sampleIndex = index;
+            passSeed = seed;
+            int64_t stride = int64_t(haltonBaseScale[0]) * haltonBaseScale[1];
+            int64_t offset = 0;
+            if (stride > 1) {
+                // The first index whose dimensions 0, 1 land in the pixel (mod 128 tiles), by the
+                // Chinese remainder theorem over the 2^j x 3^k block.
+                int pm[2] = {x % 128, y % 128};
+                if (pm[0] < 0) pm[0] += 128;
+                if (pm[1] < 0) pm[1] += 128;
+                for (int i = 0; i < 2; ++i) {
+                    uint64_t dimOffset = InverseRadicalInverse(uint64_t(pm[i]), i == 0 ? 2 : 3, haltonBaseExponent[i]);
+                    offset += int64_t(dimOffset) * (stride / haltonBaseScale[i]) * haltonMultInverse[i];
+                }
+                offset %= stride;
+            }
+            globalIndex = uint64_t(offset + int64_t(index) * stride);
+            dimension = Max(2, dim);
+            break;
+        }
+        case SamplerKind::Sobol:
+            pass = 0;
+            sampleIndex = index;
+            passSeed = seed;
+            globalIndex = SobolIntervalToIndex(sobolLog2Scale, uint64_t(uint32_t(index)), x, y);
+            dimension = Max(2, dim);
+            break;
         case SamplerKind::PaddedSobol:
         case SamplerKind::Stratified:
             pass = uint32_t(index) / uint32_t(samplesPerPixel);
@@ -267,6 +305,12 @@ struct Sampler {
     LU_HD Float Get1DOther() {
         switch (kind) {
         case SamplerKind::Independent: ++dimension; return rng.Uniform<float>();
+        case SamplerKind::Halton:
+            if (dimension >= kPrimeTableSize) dimension = 2;
+            return HaltonDimension(dimension++);
+        case SamplerKind::Sobol:
+            if (dimension >= kSobolDimensions) dimension = 2;
+            return SobolDimension(dimension++);
         case SamplerKind::PaddedSobol: {
             uint64_t hash = PixelDimensionHash();
             int index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
@@ -291,6 +335,18 @@ struct Sampler {
             Float u1 = rng.Uniform<float>();
             return {u0, u1};
         }
+        case SamplerKind::Halton: {
+            if (dimension + 1 >= kPrimeTableSize) dimension = 2;
+            int d = dimension;
+            dimension += 2;
+            return {HaltonDimension(d), HaltonDimension(d + 1)};
+        }
+        case SamplerKind::Sobol: {
+            if (dimension + 1 >= kSobolDimensions) dimension = 2;
+            int d = dimension;
+            dimension += 2;
+            return {SobolDimension(d), SobolDimension(d + 1)};
+        }
         case SamplerKind::PaddedSobol: {
             uint64_t hash = PixelDimensionHash();
             int index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
@@ -311,10 +367,36 @@ struct Sampler {
         }
     }
 
-    // The sample for the position in the pixel (all kinds here: the next 2D sample, as pbrt-v4).
-    LU_HD Vec2f GetPixel2D() { return Get2D(); }
+    // The sample for the position in the pixel: the next 2D sample, except for Halton and Sobol,
+    // whose dimensions 0 and 1 (unrandomized) chose the pixel and give the offset in it (pbrt-v4).
+    LU_HD Vec2f GetPixel2D() {
+        if (kind == SamplerKind::Halton)
+            return {RadicalInverse(0, globalIndex >> haltonBaseExponent[0]),
+                    RadicalInverse(1, globalIndex / uint64_t(haltonBaseScale[1]))};
+        if (kind == SamplerKind::Sobol) {
+            Float scale = Float(1 << sobolLog2Scale);
+            Float u0 = SobolSampleAny(globalIndex, 0, RandomizeStrategy::None, 0) * scale - Float(px);
+            Float u1 = SobolSampleAny(globalIndex, 1, RandomizeStrategy::None, 0) * scale - Float(py);
+            return {Clamp(u0, Float(0), OneMinusEpsilon), Clamp(u1, Float(0), OneMinusEpsilon)};
+        }
+        return Get2D();
+    }
 
     // ---- Internals ----
+
+    // pbrt-v4's HaltonSampler::SampleDimension (PermuteDigits seeded by `seed`; Owen by dimension).
+    LU_HD Float HaltonDimension(int d) const {
+        if (randomize == RandomizeStrategy::None) return RadicalInverse(d, globalIndex);
+        if (randomize == RandomizeStrategy::Owen)
+            return OwenScrambledRadicalInverse(d, globalIndex, uint32_t(MixBits(1 + (uint64_t(d) << 4))));
+        return ScrambledRadicalInverse(d, globalIndex, uint32_t(seed));
+    }
+
+    // pbrt-v4's SobolSampler::SampleDimension: the randomizer seeded by the dimension and seed.
+    LU_HD Float SobolDimension(int d) const {
+        uint32_t hash = uint32_t(MixBits((uint64_t(uint32_t(d)) << 32) ^ uint64_t(uint32_t(seed))));
+        return SobolSampleAny(globalIndex, d, randomize, hash);
+    }
 
     // pbrt-v4's ZSobolSampler::GetSampleIndex: Morton index with every base-4 digit shuffled by
     // one of the 24 permutations, chosen by a hash of the higher digits and the dimension. The

@@ -16,9 +16,15 @@ namespace lu::build {
 // ---- Errors ----
 
 [[noreturn]] inline void Fail(const FileLoc &loc, const std::string &message) { throw SceneError(loc, message); }
+// An unsupported feature: the builder collects these (BuildContext::Collect) and goes on, so that
+// one error lists every unsupported feature of the scene.
+class UnsupportedError : public SceneError {
+  public:
+    using SceneError::SceneError;
+};
 // Unsupported feature that would change the picture: an error naming it.
 [[noreturn]] inline void FailUnsupported(const FileLoc &loc, const std::string &feature, const std::string &why = "") {
-    throw SceneError(loc, feature + " is not supported" + (why.empty() ? std::string() : " (" + why + ")"));
+    throw UnsupportedError(loc, feature + " is not supported" + (why.empty() ? std::string() : " (" + why + ")"));
 }
 // Location of a parameter (without marking it used), or `fallback` when absent.
 inline FileLoc ParamLoc(const ParameterDictionary &params, const std::string &name, const FileLoc &fallback) {
@@ -86,6 +92,23 @@ struct BuildContext {
     BuildContext(const SceneDescription &d, Diagnostics &g, const BuildOptions &o, HostScene &s)
         : desc(d), diag(g), opts(o), scene(s) {}
 
+    // Unsupported features met so far (each location and message once), in scene order.
+    std::vector<SceneError> unsupportedErrors;
+    // Runs f; an UnsupportedError it throws is recorded and false returned (the caller skips the
+    // entity); any other error propagates.
+    template <typename F>
+    bool Collect(F &&f) {
+        try {
+            f();
+            return true;
+        } catch (const UnsupportedError &e) {
+            for (const SceneError &seen : unsupportedErrors)
+                if (seen.Message() == e.Message() && seen.Loc().ToString() == e.Loc().ToString()) return false;
+            unsupportedErrors.push_back(e);
+            return false;
+        }
+    }
+
     // Textures by name (the last definition wins is not allowed: redefinitions are errors).
     std::map<std::string, const TextureEntity *> floatTextures, spectrumTextures;
     std::map<ImageKey, LoadedImage> imageCache;
@@ -145,6 +168,8 @@ SpectrumTexture ConstantSpectrumTexture(const Spectrum &s, SpectrumType type);
 void BuildMaterials(BuildContext &ctx);
 // Material of a shape: scene.materials index or NoIndex (interface); *type gets the pbrt type name.
 uint32_t ResolveShapeMaterial(BuildContext &ctx, const ShapeEntity &shape, std::string *type);
+// pbrt-v4's default material (diffuse, reflectance 0.5), created on first use.
+uint32_t DefaultMaterial(BuildContext &ctx);
 // Loads an image file into scene.texels (cached); SceneError at loc on failure.
 LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLinear, const FileLoc &loc);
 uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap);

@@ -156,7 +156,7 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
 
 void BuildLights(BuildContext &ctx) {
     HostScene &s = ctx.scene;
-    for (const LightEntity &e : ctx.desc.lights) {
+    for (const LightEntity &e : ctx.desc.lights) ctx.Collect([&] {
         if (!e.outsideMedium.empty())
             FailUnsupported(e.loc, "MediumInterface " + Quoted(e.outsideMedium) + " for a light (participating media)");
         const ParameterDictionary &p = e.params;
@@ -232,7 +232,7 @@ void BuildLights(BuildContext &ctx) {
         if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
             s.infiniteLights.push_back(uint32_t(s.lights.size()));
         s.lights.push_back(l);
-    }
+    });
 }
 
 namespace {

@@ -160,6 +160,18 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
 
 }  // namespace
 
+// No Material directive in effect: pbrt-v4's default "diffuse" (reflectance 0.5), created once.
+uint32_t DefaultMaterial(BuildContext &ctx) {
+    if (ctx.defaultMaterial == NoIndex) {
+        Material m;
+        m.kind = MaterialKind::Diffuse;
+        m.reflectance = ConstantSpectrumTexture(Spectrum::Const(0.5f), SpectrumType::Albedo);
+        ctx.defaultMaterial = uint32_t(ctx.scene.materials.size());
+        ctx.scene.materials.push_back(m);
+    }
+    return ctx.defaultMaterial;
+}
+
 void BuildMaterials(BuildContext &ctx) {
     // Named materials first (pbrt-v4's CreateMaterials order), then the anonymous ones.
     for (const auto &[name, e] : ctx.desc.namedMaterials) {
@@ -167,11 +179,19 @@ void BuildMaterials(BuildContext &ctx) {
         if (!e.params.Has("type"))
             Fail(e.loc, "named material " + Quoted(name) + ": \"string type\" not provided in its parameters");
         ctx.namedMaterialTypes[name] = type;
-        ctx.namedMaterials[name] = CreateMaterial(ctx, type, e.params, e.loc, "MakeNamedMaterial " + Quoted(name));
+        // An unsupported material is collected and replaced by the default one, so that the
+        // shapes using it are still checked.
+        uint32_t m = NoIndex;
+        if (!ctx.Collect([&] { m = CreateMaterial(ctx, type, e.params, e.loc, "MakeNamedMaterial " + Quoted(name)); }))
+            m = DefaultMaterial(ctx);
+        ctx.namedMaterials[name] = m;
     }
     for (const SceneEntity &e : ctx.desc.materials) {
         ctx.anonymousMaterialTypes.push_back(e.name);
-        ctx.anonymousMaterials.push_back(CreateMaterial(ctx, e.name, e.params, e.loc, "Material " + Quoted(e.name)));
+        uint32_t m = NoIndex;
+        if (!ctx.Collect([&] { m = CreateMaterial(ctx, e.name, e.params, e.loc, "Material " + Quoted(e.name)); }))
+            m = DefaultMaterial(ctx);
+        ctx.anonymousMaterials.push_back(m);
     }
 }
 
@@ -187,16 +207,8 @@ uint32_t ResolveShapeMaterial(BuildContext &ctx, const ShapeEntity &shape, std::
         if (type) *type = ctx.anonymousMaterialTypes[shape.materialIndex];
         return ctx.anonymousMaterials[shape.materialIndex];
     }
-    // No Material directive in effect: pbrt-v4's default "diffuse" (reflectance 0.5).
-    if (ctx.defaultMaterial == NoIndex) {
-        Material m;
-        m.kind = MaterialKind::Diffuse;
-        m.reflectance = ConstantSpectrumTexture(Spectrum::Const(0.5f), SpectrumType::Albedo);
-        ctx.defaultMaterial = uint32_t(ctx.scene.materials.size());
-        ctx.scene.materials.push_back(m);
-    }
     if (type) *type = "diffuse";
-    return ctx.defaultMaterial;
+    return DefaultMaterial(ctx);
 }
 
 }  // namespace lu::build

@@ -417,7 +417,7 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
 void BuildShapes(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     // ---- Top-level shapes ----
-    for (const ShapeEntity &sh : desc.shapes) {
+    for (const ShapeEntity &sh : desc.shapes) ctx.Collect([&] {
         CheckMedia(sh);
         Placement pl;
         pl.shape = &sh;
@@ -437,7 +437,7 @@ void BuildShapes(BuildContext &ctx) {
             }
         }
         BuildOne(ctx, pl, true);
-    }
+    });
 
     // ---- Object instances: flattened into render-space copies ----
     ctx.scene.stats.instanceDefinitions = int(desc.instanceDefinitions.size());
@@ -446,7 +446,7 @@ void BuildShapes(BuildContext &ctx) {
         auto it = desc.instanceDefinitions.find(use.name);
         if (it == desc.instanceDefinitions.end()) Fail(use.loc, "object instance " + Quoted(use.name) + " is not defined");
         ctx.scene.stats.instanceUses++;
-        for (const ShapeEntity &sh : it->second.shapes) {
+        for (const ShapeEntity &sh : it->second.shapes) ctx.Collect([&] {
             CheckMedia(sh);
             Placement pl;
             pl.shape = &sh;
@@ -460,7 +460,7 @@ void BuildShapes(BuildContext &ctx) {
             pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
             // Area lights inside instances do not emit (pbrt-v4; the parser warns).
             BuildOne(ctx, pl, pl.firstUse);
-        }
+        });
     }
 }
 

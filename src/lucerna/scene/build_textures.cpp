@@ -600,11 +600,12 @@ void IndexTextures(BuildContext &ctx) {
     ctx.scene.stats.spectrumTextures = int(ctx.desc.spectrumTextures.size());
     // pbrt-v4 creates every texture, used or not (spectrum textures in each spectrum type), so
     // errors in unused ones surface too.
-    for (const TextureEntity &te : ctx.desc.floatTextures) BuildFloatTexture(ctx, te);
-    for (const TextureEntity &te : ctx.desc.spectrumTextures) {
-        BuildSpectrumTexture(ctx, te, SpectrumType::Albedo);
-        BuildSpectrumTexture(ctx, te, SpectrumType::Unbounded);
-    }
+    for (const TextureEntity &te : ctx.desc.floatTextures) ctx.Collect([&] { BuildFloatTexture(ctx, te); });
+    for (const TextureEntity &te : ctx.desc.spectrumTextures)
+        ctx.Collect([&] {
+            BuildSpectrumTexture(ctx, te, SpectrumType::Albedo);
+            BuildSpectrumTexture(ctx, te, SpectrumType::Unbounded);
+        });
 }
 
 }  // namespace lu::build

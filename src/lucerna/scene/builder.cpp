@@ -204,8 +204,9 @@ void BuildCamera(BuildContext &ctx) {
     HostScene &s = ctx.scene;
     const ParameterDictionary &p = c.params;
     std::string name = c.name.empty() ? "perspective" : c.name;
-    if (OneOf(name, {"orthographic", "realistic", "spherical"})) FailUnsupported(c.loc, "Camera " + Quoted(name));
-    if (name != "perspective") Fail(c.loc, "unknown camera type " + Quoted(name));
+    if (name == "realistic")
+        FailUnsupported(c.loc, "Camera \"realistic\"", "lens systems need a per-ray camera weight that the integrators do not take yet");
+    if (!OneOf(name, {"perspective", "orthographic", "spherical"})) Fail(c.loc, "unknown camera type " + Quoted(name));
     Float lensRadius = Float(p.GetOneFloat("lensradius", 0));
     Float focalDistance = Float(p.GetOneFloat("focaldistance", 1e6));
     Float frame = 0;
@@ -223,18 +224,40 @@ void BuildCamera(BuildContext &ctx) {
             Fail(ParamLoc(p, "screenwindow", c.loc), "\"screenwindow\" must have xmin < xmax and ymin < ymax");
         haveScreen = true;
     }
-    double fov = p.GetOneFloat("fov", 90);
-    if (!(fov > 0 && fov < 180))
-        Fail(ParamLoc(p, "fov", c.loc), "\"fov\" must be between 0 and 180 degrees (exclusive), got " + std::to_string(fov));
-    if (lensRadius < 0) Fail(ParamLoc(p, "lensradius", c.loc), "\"lensradius\" must not be negative");
-    if (lensRadius > 0 && !(focalDistance > 0)) Fail(ParamLoc(p, "focaldistance", c.loc), "\"focaldistance\" must be positive");
-    s.camera = MakePerspectiveCamera(c.worldFromCamera, s.film.width, s.film.height, Float(fov), lensRadius, focalDistance,
-                                     haveScreen ? screen : nullptr, frame);
     s.stats.cameraType = name;
-    s.stats.fov = fov;
     s.stats.cameraPosition = c.worldFromCamera.ApplyPoint(Vec3f(0, 0, 0));
     Vec3f dir = c.worldFromCamera.ApplyVector(Vec3f(0, 0, 1));
     if (LengthSquared(dir) > 0) s.stats.cameraDirection = Normalize(dir);
+    if (lensRadius < 0) Fail(ParamLoc(p, "lensradius", c.loc), "\"lensradius\" must not be negative");
+    if (lensRadius > 0 && !(focalDistance > 0)) Fail(ParamLoc(p, "focaldistance", c.loc), "\"focaldistance\" must be positive");
+    if (name == "orthographic") {
+        s.camera = MakeOrthographicCamera(c.worldFromCamera, s.film.width, s.film.height, lensRadius, focalDistance,
+                                          haveScreen ? screen : nullptr, frame);
+        p.ReportUnused(ctx.diag, "Camera " + Quoted(name));
+        return;
+    }
+    if (name == "spherical") {
+        // pbrt-v4 reads the projective cameras' parameters here too and ignores them.
+        FileLoc mloc = ParamLoc(p, "mapping", c.loc);
+        std::string mapping = p.GetOneString("mapping", "equalarea");
+        CameraKind kind;
+        if (mapping == "equalarea") kind = CameraKind::SphericalEqualArea;
+        else if (mapping == "equirectangular") kind = CameraKind::SphericalEquirect;
+        else Fail(mloc, "unknown spherical camera \"mapping\" " + Quoted(mapping) + " (expected equalarea or equirectangular)");
+        if (kind == CameraKind::SphericalEqualArea && s.film.width != s.film.height)
+            ctx.diag.Warning(mloc, "spherical camera: the equal-area mapping expects a square image (" +
+                                       std::to_string(s.film.width) + "x" + std::to_string(s.film.height) + ")");
+        if (lensRadius > 0) ctx.diag.Warning(ParamLoc(p, "lensradius", c.loc), "spherical camera: \"lensradius\" is ignored (as pbrt-v4)");
+        s.camera = MakeSphericalCamera(c.worldFromCamera, s.film.width, s.film.height, kind);
+        p.ReportUnused(ctx.diag, "Camera " + Quoted(name));
+        return;
+    }
+    double fov = p.GetOneFloat("fov", 90);
+    if (!(fov > 0 && fov < 180))
+        Fail(ParamLoc(p, "fov", c.loc), "\"fov\" must be between 0 and 180 degrees (exclusive), got " + std::to_string(fov));
+    s.camera = MakePerspectiveCamera(c.worldFromCamera, s.film.width, s.film.height, Float(fov), lensRadius, focalDistance,
+                                     haveScreen ? screen : nullptr, frame);
+    s.stats.fov = fov;
     p.ReportUnused(ctx.diag, "Camera " + Quoted(name));
 }
 
@@ -299,8 +322,10 @@ void BuildSampler(BuildContext &ctx) {
         if (name == "halton" && options.randomization == "fastowen")
             Fail(loc, "halton sampler: \"fastowen\" randomization is not available (pbrt-v4 refuses it too)");
     }
-    if (OneOf(name, {"sobol", "halton", "pmj02bn"}))
-        ctx.diag.Unsupported(e.loc, "Sampler " + Quoted(name), "rendered with \"zsobol\" (same samples per pixel, seed and randomization)");
+    if (name == "sobol" && Max(scene.film.width, scene.film.height) > 65536)
+        Fail(e.loc, "sobol sampler: resolutions above 65536 pixels are not supported");
+    if (name == "pmj02bn")
+        ctx.diag.Unsupported(e.loc, "Sampler " + Quoted(name), "rendered with \"zsobol\" (same samples per pixel and seed)");
     std::string report;
     scene.sampler = MakeSampler(name, spp, int(rs.seed), scene.film.width, scene.film.height, options, &report);
     for (size_t i = 0, j; i < report.size(); i = j + 1) {
@@ -355,25 +380,40 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
     BuildContext ctx{desc, diag, opts, *scene};
     scene->inputFiles = desc.inputFiles;
 
-    if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
-        FailUnsupported(desc.colorSpaceLoc, "ColorSpace " + Quoted(desc.colorSpace));
-    for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
+    // Every unsupported feature is collected (ctx.Collect) and the build goes on, so that the one
+    // error thrown at the end lists them all; another error ends the build at once, after them.
+    auto throwCollected = [&](const SceneError *last) {
+        if (ctx.unsupportedErrors.empty()) return;
+        SceneError all = ctx.unsupportedErrors.front();
+        for (size_t i = 1; i < ctx.unsupportedErrors.size(); ++i) all.AddFollowing(ctx.unsupportedErrors[i]);
+        if (last) all.AddFollowing(*last);
+        throw all;
+    };
+    try {
+        if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
+            ctx.Collect([&] { FailUnsupported(desc.colorSpaceLoc, "ColorSpace " + Quoted(desc.colorSpace)); });
+        for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
 
-    // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).
-    BuildFilter(ctx);
-    BuildFilm(ctx, ExposureTime(ctx));
-    BuildCamera(ctx);
-    BuildSampler(ctx);
-    BuildIntegrator(ctx);
+        // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).
+        ctx.Collect([&] { BuildFilter(ctx); });
+        BuildFilm(ctx, ExposureTime(ctx));
+        ctx.Collect([&] { BuildCamera(ctx); });
+        BuildSampler(ctx);
+        ctx.Collect([&] { BuildIntegrator(ctx); });
 
-    if (!desc.media.empty())
-        FailUnsupported(desc.media.front().loc, "MakeNamedMedium " + Quoted(desc.media.front().name) + " (participating media)");
+        for (const auto &m : desc.media)
+            ctx.Collect([&] { FailUnsupported(m.loc, "MakeNamedMedium " + Quoted(m.name) + " (participating media)"); });
 
-    IndexTextures(ctx);
-    BuildMaterials(ctx);
-    BuildShapes(ctx);
-    BuildLights(ctx);
-    FinishLights(ctx);
+        IndexTextures(ctx);
+        BuildMaterials(ctx);
+        BuildShapes(ctx);
+        BuildLights(ctx);
+        FinishLights(ctx);
+    } catch (const SceneError &e) {
+        throwCollected(&e);
+        throw;
+    }
+    throwCollected(nullptr);
     // regpath's default r0 (chosen by bench/reg_radius.sh, see docs/regularization.md).
     if (!(scene->settings.regRadius > 0))
         scene->settings.regRadius = scene->bounds.Empty() ? 0.01 : 0.04 * Length(scene->bounds.Diagonal());

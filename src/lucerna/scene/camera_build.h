@@ -18,6 +18,15 @@ CameraData MakePerspectiveCamera(const Transform &renderFromCamera, int width, i
                                  Float lensRadius, Float focalDistance, const Float *screenWindow,
                                  Float frameAspectRatio = 0);
 
+// pbrt-v4's orthographic camera: the same screen window as the perspective camera, mapped to the
+// plane z = 0 of camera space (pbrt-v4's Orthographic(0, 1) is the identity there).
+CameraData MakeOrthographicCamera(const Transform &renderFromCamera, int width, int height, Float lensRadius,
+                                  Float focalDistance, const Float *screenWindow, Float frameAspectRatio = 0);
+
+// pbrt-v4's spherical camera: equal-area (kind SphericalEqualArea) or equirectangular mapping of
+// the whole image to the sphere of directions.
+CameraData MakeSphericalCamera(const Transform &renderFromCamera, int width, int height, CameraKind kind);
+
 // pbrt-v4's filter by name with its defaults: gaussian (radius 1.5, sigma 0.5), box (0.5),
 // triangle (2), mitchell (2, B = C = 1/3). A radius or sigma <= 0 (or NaN) and a NaN B or C
 // mean "not given": the default is used. Throws std::invalid_argument for an unknown name

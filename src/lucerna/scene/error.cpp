@@ -94,6 +94,15 @@ static void SourceAndCaret(std::string line, int col, std::string *src, std::str
 }
 
 std::string SceneError::Format() const {
+    std::string s = FormatOne();
+    for (const SceneError &e : following_) {
+        s.push_back('\n');
+        s.append(e.FormatOne());
+    }
+    return s;
+}
+
+std::string SceneError::FormatOne() const {
     std::string s = loc_.IncludeChain() + LocPrefix(loc_) + "error: " + message_;
     if (loc_.line <= 0) return s;
     std::string line = sourceLine_;

@@ -35,11 +35,17 @@ class SceneError : public std::runtime_error {
     // empty, Format() reads the line from loc's file. (Additive; set by the parser.)
     void SetSourceLine(std::string line) { sourceLine_ = std::move(line); }
     const std::string &SourceLine() const { return sourceLine_; }
+    // Further errors reported together with this one (the scene builder collects every
+    // unsupported feature before it gives up); Format() prints them after this one, in order.
+    void AddFollowing(const SceneError &e) { following_.push_back(e); }
+    const std::vector<SceneError> &Following() const { return following_; }
 
   private:
+    std::string FormatOne() const;
     FileLoc loc_;
     std::string message_;
     std::string sourceLine_;
+    std::vector<SceneError> following_;
 };
 
 // Warnings go to stderr as "file:line:col: warning: message" (after the include chain, if any) and

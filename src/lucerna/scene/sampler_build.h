@@ -17,7 +17,7 @@ struct SamplerOptions {
 };
 
 // Builds a sampler by pbrt-v4 name: "independent", "zsobol" (default), "paddedsobol",
-// "stratified". "sobol", "halton", "pmj02bn" and unknown names fall back to ZSobol with the
+// "stratified", "halton", "sobol". "pmj02bn" and unknown names fall back to ZSobol with the
 // requested spp. As pbrt-v4 does, "zsobol" rounds a non-power-of-two spp down to a power of two.
 // Anything noteworthy (fallbacks, rounding) is appended to *report (one line each) when given,
 // else printed to stderr as a warning.
@@ -39,15 +39,18 @@ inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width
     else if (name == "zsobol" || name.empty()) s.kind = SamplerKind::ZSobol;
     else if (name == "paddedsobol") s.kind = SamplerKind::PaddedSobol;
     else if (name == "stratified") s.kind = SamplerKind::Stratified;
+    else if (name == "halton") s.kind = SamplerKind::Halton;
+    else if (name == "sobol") s.kind = SamplerKind::Sobol;
     else {
         s.kind = SamplerKind::ZSobol;
         roundZSobol = false;
-        if (name != "sobol" && name != "halton" && name != "pmj02bn")   // those: the caller reports the substitution
+        if (name != "pmj02bn")   // that one: the caller reports the substitution
             note("unknown sampler \"" + name + "\"; using \"zsobol\" instead");
     }
 
     const std::string &rnd = options.randomization;
-    if (rnd.empty() || rnd == "fastowen") s.randomize = RandomizeStrategy::FastOwen;
+    if (rnd.empty() && s.kind == SamplerKind::Halton) s.randomize = RandomizeStrategy::PermuteDigits;   // pbrt-v4's default
+    else if (rnd.empty() || rnd == "fastowen") s.randomize = RandomizeStrategy::FastOwen;
     else if (rnd == "none") s.randomize = RandomizeStrategy::None;
     else if (rnd == "permutedigits") s.randomize = RandomizeStrategy::PermuteDigits;
     else if (rnd == "owen") s.randomize = RandomizeStrategy::Owen;
@@ -56,6 +59,37 @@ inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width
         note("unknown randomization \"" + rnd + "\"; using \"fastowen\"");
     }
 
+    if (s.kind == SamplerKind::Halton && s.randomize == RandomizeStrategy::FastOwen) {
+        s.randomize = RandomizeStrategy::PermuteDigits;
+        note("halton: \"fastowen\" randomization is not available; using \"permutedigits\"");
+    }
+    if (s.kind == SamplerKind::Halton) {
+        // pbrt-v4: the smallest 2^j (3^k) covering the resolution, up to 128 pixels; the pixel's
+        // first index by the Chinese remainder theorem needs the inverses of one scale mod the other.
+        int res[2] = {Max(1, width), Max(1, height)};
+        for (int i = 0; i < 2; ++i) {
+            int base = i == 0 ? 2 : 3, scale = 1, exp = 0;
+            while (scale < Min(res[i], 128)) {
+                scale *= base;
+                ++exp;
+            }
+            s.haltonBaseScale[i] = scale;
+            s.haltonBaseExponent[i] = exp;
+        }
+        auto inverseMod = [](int64_t a, int64_t n) -> int {
+            if (n == 1) return 0;
+            for (int64_t x = 1; x < n; ++x)
+                if ((a * x) % n == 1) return int(x);
+            return 0;   // unreachable: powers of 2 and 3 are coprime
+        };
+        s.haltonMultInverse[0] = inverseMod(s.haltonBaseScale[1], s.haltonBaseScale[0]);
+        s.haltonMultInverse[1] = inverseMod(s.haltonBaseScale[0], s.haltonBaseScale[1]);
+    } else if (s.kind == SamplerKind::Sobol) {
+        int res = int(RoundUpPow2(Max(1, Max(width, height))));
+        s.sobolLog2Scale = Log2Int(uint64_t(res));
+        if (!IsPowerOf2(s.samplesPerPixel))
+            note("sobol: non power-of-two sample count " + std::to_string(s.samplesPerPixel) + " is sub-optimal");
+    }
     if (s.kind == SamplerKind::ZSobol) {
         int n = s.samplesPerPixel;
         s.log2SamplesPerPixel = Log2Int(uint64_t(n));

@@ -34,7 +34,11 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     const RenderSettings &rs = s.settings;
     std::ostringstream o;
     o << "resolution: " << s.film.width << " x " << s.film.height << "\n";
-    o << "camera: " << st.cameraType << ", fov " << Fmt("%.6g", st.fov) << " deg, position " << Vec(st.cameraPosition)
+    o << "camera: " << st.cameraType;
+    if (s.camera.kind == CameraKind::Perspective) o << ", fov " << Fmt("%.6g", st.fov) << " deg";
+    else if (s.camera.kind == CameraKind::SphericalEqualArea) o << ", equal-area mapping";
+    else if (s.camera.kind == CameraKind::SphericalEquirect) o << ", equirectangular mapping";
+    o << ", position " << Vec(st.cameraPosition)
       << ", direction " << Vec(st.cameraDirection) << "\n";
     o << "film: imaging ratio " << Fmt("%.6g", s.film.imagingRatio) << ", filter " << st.filterType
       << Fmt(" (radius %.6g x %.6g)", s.filter.radiusX, s.filter.radiusY) << "\n";
