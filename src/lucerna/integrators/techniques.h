@@ -2,13 +2,16 @@
 // TraceBase): next-event estimation at non-specular vertices, the regularized connection at
 // specular vertices, BSDF sampling of the next direction, and the weight of an emitter that BSDF
 // sampling hits. Their MIS weights come from integrators/mis.h. A new technique goes here: its
-// function, its call in SampleDirect, and its pdf in EmitterHitWeight.
+// function, its call in SampleDirect, and its pdf in EmitterHitWeight. A vertex is a surface
+// point (its BSDF) or a medium scattering point (its phase function); the media a shadow ray
+// crosses are estimated by integrators/volume.h.
 // Backends supply a Tracer with  bool Intersect(const Ray &, HitRecord *) const;  bool Occluded(const Ray &) const;
 #pragma once
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/integrators/mis.h"
 #include "lucerna/integrators/stats.h"
+#include "lucerna/integrators/volume.h"
 #include "lucerna/materials/bsdf.h"
 #include "lucerna/sampling/sampler.h"
 
@@ -44,30 +47,99 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
     return ctx;
 }
 
-// ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd) ----
+// ---- Vertices: what scatters there, and which media they touch ----
 
-// One light sample at a non-specular vertex, MIS-weighted against BSDF sampling.
+// The scattering function at a surface vertex: the BSDF times |cos| at the shading normal.
+struct SurfaceScatter {
+    const BSDF &bsdf;
+    Vec3f ns;
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return bsdf.f(wo, wi) * AbsDot(wi, ns); }
+    LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return bsdf.PDF(wo, wi); }
+};
+
+// The scattering function at a medium vertex: the Henyey-Greenstein phase function (sigma_s is
+// in the path throughput), which its sampling reproduces exactly.
+struct PhaseScatter {
+    Float g = 0;
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return SampledSpectrum(HenyeyGreenstein(Dot(wo, wi), g)); }
+    LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return HenyeyGreenstein(Dot(wo, wi), g); }
+};
+
+// The media at a vertex: the medium the path arrived in, the interface of a surface vertex, and
+// the path's per-wavelength probabilities (nullptr: the path has not entered a medium).
+struct VertexMedia {
+    uint32_t medium = NoIndex;
+    const Shape *shape = nullptr;   // surface vertices
+    Vec3f n;                        // surface vertices: the oriented geometric normal
+    const WavelengthPdfs *r = nullptr;
+    // The medium a ray leaving the vertex along w starts in.
+    LU_HD uint32_t Toward(const Vec3f &w) const { return shape ? MediumAfter(*shape, n, w, medium) : medium; }
+};
+
+// The visibility of a light sample: one occlusion query in scenes without media or interfaces,
+// else the transmittance through them (TraceTransmittance). *tr stays 1 when nothing was crossed.
 template <typename Tracer>
-LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
-                               Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st,
-                               LightStrategy strategy = LightStrategy::MIS) {
+LU_HD bool ShadowRayVisible(const SceneView &scene, const Tracer &tracer, const Ray &shadow, const VertexMedia &vm,
+                            const Vec3f &wi, const SampledWavelengths &lambda, PathStats &st, ShadowTransmittance *tr) {
+    ++st.rays; ++st.shadowRays;
+    if (!scene.walkInterfaces) return !tracer.Occluded(shadow);
+    return TraceTransmittance(scene, tracer, shadow, vm.Toward(wi), lambda, st, tr);
+}
+
+// The per-wavelength probabilities of a light sample's path under the explicit technique (*rL)
+// and under the implicit one (*rU), from the path's and the shadow ray's (pbrt-v4's SampleLd);
+// false when neither the path nor the shadow ray went through a medium (scalar weights apply).
+LU_INLINE bool LightSamplePdfs(const VertexMedia &vm, const ShadowTransmittance &tr, SampledSpectrum *rL,
+                               SampledSpectrum *rU) {
+    if (!vm.r && !tr.throughMedium) return false;
+    SampledSpectrum prefix = vm.r ? vm.r->u : SampledSpectrum(1);
+    *rL = prefix * tr.sL;
+    *rU = prefix * tr.sU;
+    return true;
+}
+
+// ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd and VolPathIntegrator::SampleLd) ----
+
+// One light sample at a non-specular vertex (ctx, outgoing direction wo, scattering function sc:
+// SurfaceScatter or PhaseScatter), MIS-weighted against sampling sc, through the media in vm.
+template <typename Tracer, typename Scatter>
+LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
+                               const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                               const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, AllowIncompletePDF(strategy), &ls))
-        return SampledSpectrum(0);
-    SampledSpectrum f = bsdf.f(si.wo, ls.wi) * AbsDot(ls.wi, si.ns);
+    if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls)) return SampledSpectrum(0);
+    SampledSpectrum f = sc.f(wo, ls.wi);
     if (f.IsBlack()) return SampledSpectrum(0);
-    Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
-    ++st.rays; ++st.shadowRays;
-    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
+    ShadowTransmittance tr;
+    if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr)) return SampledSpectrum(0);
     Float pdfLightW = pick.pmf * ls.pdf;
-    if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
-    Float pdfBsdfW = bsdf.PDF(si.wo, ls.wi);
-    return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+    SampledSpectrum rL, rU;
+    if (!LightSamplePdfs(vm, tr, &rL, &rU)) {
+        if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
+        Float pdfBsdfW = sc.PDF(wo, ls.wi);
+        return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+    }
+    f *= tr.T;
+    if (ls.isDelta || strategy == LightStrategy::NEEOnly)
+        return f * ls.L * (WavelengthWeight(rL, pdfLightW, rU, 0, lambda) / pdfLightW);
+    Float pdfBsdfW = sc.PDF(wo, ls.wi);
+    Float w = LightSampleWeight(pdfLightW, rU[0] * pdfBsdfW) * WavelengthWeight(rL, pdfLightW, rU, pdfBsdfW, lambda);
+    return f * ls.L * (w / pdfLightW);
+}
+
+// NEE at a surface vertex.
+template <typename Tracer>
+LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
+                               const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                               const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS) {
+    return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda, sampler, scene, tracer, st,
+                    strategy);
 }
 
 // ---- The regularized connection (integrators/regularization.h) ----
@@ -79,9 +151,10 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
 // Dirac vertices from the camera: the pixel integral samples the paths to area and infinite
 // lights there, unbiased) connects only to point, spot and distant lights.
 template <typename Tracer>
-LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
-                                        Sampler &sampler, const SceneView &scene, const Tracer &tracer,
-                                        const RegularizationParams &rp, LightStrategy strategy, bool deltaLightsOnly,
+LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
+                                        const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                                        const Tracer &tracer, const RegularizationParams &rp, LightStrategy strategy,
+                                        bool deltaLightsOnly,
                                         PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
@@ -105,14 +178,29 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
     // f_reg |cos| / p = weight * phi / pdf per lobe; for delta lights the "pdf" is the pmf alone.
     SampledSpectrum sum(0);
+    bool inCone[2] = {false, false};
     for (int i = 0; i < n; ++i) {
         if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
+        inCone[i] = true;
         sum += lobes[i].weight * RegularizedConnectionWeight(lobes[i].pdf * pdfConeW, pdfLightW);
     }
     if (sum.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
-    ++st.rays; ++st.shadowRays;
-    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    ShadowTransmittance tr;
+    if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr)) return SampledSpectrum(0);
+    SampledSpectrum rL, rU;
+    if (LightSamplePdfs(vm, tr, &rL, &rU)) {
+        // Through media: the lobes' weights from the per-wavelength probabilities, and the
+        // transmittance of the connection.
+        sum = SampledSpectrum(0);
+        for (int i = 0; i < n; ++i) {
+            if (!inCone[i]) continue;
+            Float pdfImplicitW = lobes[i].pdf * pdfConeW;
+            sum += lobes[i].weight * (RegularizedConnectionWeight(rU[0] * pdfImplicitW, pdfLightW) *
+                                      WavelengthWeight(rL, pdfLightW, rU, pdfImplicitW, lambda));
+        }
+        sum *= tr.T;
+    }
     Float pSample = pick.pmf * ls.pdf;
     SampledSpectrum c = sum * ls.L * (pdfConeW / pSample);
     ++st.regConnections;
@@ -139,19 +227,19 @@ struct ScatterVertex {
 // regularized connection ran and could have sampled area and infinite lights.
 template <typename Tracer>
 LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
-                        const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
-                        const Tracer &tracer, const PathSettings &ps, PathStats &st, SampledSpectrum *Ld,
-                        bool *regularized) {
+                        const VertexMedia &vm, const SampledWavelengths &lambda, Sampler &sampler,
+                        const SceneView &scene, const Tracer &tracer, const PathSettings &ps, PathStats &st,
+                        SampledSpectrum *Ld, bool *regularized) {
     *regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
-        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy);
+        *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy);
         return true;
     }
     if (ps.reg.enabled) {
         // Selectivity: after Dirac vertices only (from the camera), area and infinite lights are
         // sampled without bias by the pixel integral; only delta lights need the technique there.
         bool deltaOnly = in.allSpecular;
-        *Ld = SampleRegularized(si, bsdf, lambda, sampler, scene, tracer, ps.reg, ps.strategy, deltaOnly, st);
+        *Ld = SampleRegularized(si, bsdf, vm, lambda, sampler, scene, tracer, ps.reg, ps.strategy, deltaOnly, st);
         *regularized = !deltaOnly;
         return true;
     }
@@ -160,11 +248,32 @@ LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool spe
 
 // ---- BSDF sampling, and the emitters it hits ----
 
+// EmitterHitWeight for a path that went through media: the technique weights at the hero
+// wavelength from the per-wavelength probabilities (r.u[0] == 1), times the wavelength weight.
+LU_INLINE Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi,
+                                        Vec3f pLight, Vec3f nLight, bool atInfinity, const PathSettings &ps,
+                                        const WavelengthPdfs &r, const SampledWavelengths &lambda) {
+    if (v.camera || (v.specular && !v.regularized)) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
+    Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
+    if (v.specular) {
+        Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
+        Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d));   // lobe-aware
+        return RegularizedHitWeight(pdfConeW, r.l[0] * pdfLightW) * WavelengthWeight(r.u, pdfConeW, r.l, pdfLightW, lambda);
+    }
+    if (ps.strategy == LightStrategy::NEEOnly) return 0;
+    if (ps.strategy == LightStrategy::BSDFOnly) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
+    return BSDFHitWeight(ps.strategy, v.pdfBsdfW, r.l[0] * pdfLightW) *
+           WavelengthWeight(r.u, v.pdfBsdfW, r.l, pdfLightW, lambda);
+}
+
 // MIS weight of emitter `li` hit along wi at pLight (normal nLight) from vertex v, against the
 // explicit technique that could have sampled it there. Infinite lights: pLight = v.ctx.p + wi,
-// nLight = -wi, atInfinity = true.
+// nLight = -wi, atInfinity = true. r: the path's per-wavelength probabilities when it went
+// through a medium (nullptr: scalar weights).
 LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
-                                 Vec3f nLight, bool atInfinity, const PathSettings &ps) {
+                                 Vec3f nLight, bool atInfinity, const PathSettings &ps,
+                                 const WavelengthPdfs *r = nullptr, const SampledWavelengths *lambda = nullptr) {
+    if (r) return EmitterHitWeightInMedia(v, scene, li, wi, pLight, nLight, atInfinity, ps, *r, *lambda);
     if (v.camera || (v.specular && !v.regularized)) return 1;
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW

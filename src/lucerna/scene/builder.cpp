@@ -35,6 +35,9 @@ SceneView HostScene::View() const {
     v.texels = SpanOf(texels);
     v.distributions2D = SpanOf(distributions2D);
     v.distData = SpanOf(distData);
+    v.media = SpanOf(media);
+    v.mediumData = SpanOf(mediumData);
+    v.walkInterfaces = walkInterfaces;
     v.spectra = spectra.Tables();
     RGBToSpectrumTableData t = SRGBToSpectrumTable();
     v.rgbToSpecRes = t.res;
@@ -361,12 +364,14 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
     BuildSampler(ctx);
     BuildIntegrator(ctx);
 
-    if (!desc.media.empty())
-        FailUnsupported(desc.media.front().loc, "MakeNamedMedium " + Quoted(desc.media.front().name) + " (participating media)");
-
+    BuildMedia(ctx);
     IndexTextures(ctx);
     BuildMaterials(ctx);
     BuildShapes(ctx);
+    scene->walkInterfaces = !scene->media.empty();
+    for (const Shape &sh : scene->shapes) scene->walkInterfaces |= sh.material == NoIndex;
+    if (scene->mediumData.size() > size_t(UINT32_MAX))
+        FailUnsupported({}, "media grids of more than 2^32 values in all");
     BuildLights(ctx);
     FinishLights(ctx);
     // regpath's default r0 (chosen by bench/reg_radius.sh, see docs/regularization.md).

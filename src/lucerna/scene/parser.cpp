@@ -804,6 +804,7 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         desc_.camera.loc = loc;
         desc_.camera.params = ParameterDictionary(std::move(params));
         desc_.camera.worldFromCamera = Transform(ToMatrix4(worldFromCamera), ToMatrix4(cameraFromWorld));
+        desc_.camera.medium = state_.outsideMedium;
         DMatrix inv1;
         if (!Invert(state_.ctm[1], &inv1)) inv1 = worldFromCamera;
         namedCoordinateSystems_["camera"].m[0] = worldFromCamera;
@@ -885,12 +886,13 @@ void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fil
         state_.insideMedium = inside;
         state_.outsideMedium = outside;
     } else if (d == "MakeNamedMedium") {
-        SceneEntity e;
+        MediumEntity e;
         e.name = ReadString(ts, dir, "medium name");
         e.loc = loc;
         ParamList params = ReadParams(ts);
         if (!mediumNames_.insert(e.name).second) ts.Fail(dir, "named medium \"" + e.name + "\" is already defined");
         e.params = MakeDict(std::move(params), state_.mediumAttributes, loc);
+        e.renderFromObject = CurrentTransform(loc, "MakeNamedMedium");
         desc_.media.push_back(std::move(e));
     }
     // ---- materials and textures ----
