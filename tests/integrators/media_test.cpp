@@ -206,16 +206,16 @@ TEST(MediaRender, SlabIsBeerLambert) {
 }
 
 TEST(MediaRender, InsideAndOutsideFollowPbrtV4) {
-    // A unit sphere of ink: inside is the side away from the (outward) normal; ReverseOrientation
+    // A sphere of ink (radius 0.6): inside is the side away from the (outward) normal; ReverseOrientation
     // flips the normal and so the sides; "" "ink" without it puts the ink outside the sphere,
     // between it and the emitter (the camera's ray starts in vacuum).
     double fov = 6;
-    auto chord = [](double dx, double dy, double dz) {   // ray from (0,0,-4) through the unit sphere
-        double b = 4 * dz, c = 16 - 1, disc = b * b - c;
+    auto chord = [](double dx, double dy, double dz) {   // ray from (0,0,-4) through the sphere
+        double b = 4 * dz, c = 16 - 0.36, disc = b * b - c;
         return disc > 0 ? 2 * std::sqrt(disc) : 0.0;
     };
     auto exitToEmitter = [&](double dx, double dy, double dz) {   // from the sphere's far side to z = 3
-        double b = 4 * dz, disc = b * b - 15;
+        double b = 4 * dz, disc = b * b - (16 - 0.36);
         if (disc <= 0) return 0.0;
         double tExit = b + std::sqrt(disc), tEmit = 7 / dz;
         return tEmit - tExit;
@@ -223,7 +223,7 @@ TEST(MediaRender, InsideAndOutsideFollowPbrtV4) {
     double inside = ExpectedMean(fov, [&](double x, double y, double z) { return std::exp(-0.7 * chord(x, y, z)); });
     double outside = ExpectedMean(fov, [&](double x, double y, double z) { return std::exp(-0.7 * exitToEmitter(x, y, z)); });
     auto sphere = [](const std::string &pre) {
-        return "AttributeBegin\nMaterial \"interface\"\n" + pre + "Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
+        return "AttributeBegin\nMaterial \"interface\"\n" + pre + "Shape \"sphere\" \"float radius\" [ 0.6 ]\nAttributeEnd\n";
     };
     MeanSE a = RenderMean("media_inside", EmitterBehind(kAbsorber, sphere("MediumInterface \"ink\" \"\"\n"), fov));
     MeanSE b = RenderMean("media_reversed", EmitterBehind(kAbsorber, sphere("ReverseOrientation\nMediumInterface \"\" \"ink\"\n"), fov));
