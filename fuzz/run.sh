@@ -14,10 +14,10 @@ build=$root/build-fuzz
 
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DLUCERNA_FUZZ=ON -DLUCERNA_CUDA=OFF \
     -DLUCERNA_BENCH=OFF -DLUCERNA_TESTS=OFF -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --target fuzz_scene fuzz_ply -j2
+cmake --build "$build" --target fuzz_scene fuzz_ply fuzz_gzip -j2
 
 work=$build/fuzz-work
-mkdir -p "$work/seed-scene" "$work/seed-ply" "$work/corpus-scene" "$work/corpus-ply"
+mkdir -p "$work/seed-scene" "$work/seed-ply" "$work/seed-gzip" "$work/corpus-scene" "$work/corpus-ply" "$work/corpus-gzip"
 # Seeds: the small shared scene files; PLY headers with small bodies (the small shared meshes
 # whole, the first 2 KiB of the large ones) and the hand-made files in fuzz/seeds.
 while IFS= read -r -d "" f; do cp -f "$f" "$work/seed-scene/$(basename "$(dirname "$f")")-$(basename "$f")"; done < <(find "$shared/scenes" -name "*.pbrt" -size -64k -print0 2>/dev/null)
@@ -29,9 +29,10 @@ while IFS= read -r -d '' f; do
 done < <(find "$shared/scenes" -name '*.ply' -print0 2>/dev/null)
 find "$shared/scenes" -name '*.ply' -size -20k -exec cp -f {} "$work/seed-ply/" \; 2>/dev/null || true
 cp -f "$root"/fuzz/seeds/*.ply "$work/seed-ply/"
+cp -f "$root"/fuzz/seeds/*.gz "$work/seed-gzip/"
 
 # Replay the regression inputs first: any crash here is a regression.
-for t in fuzz_scene fuzz_ply; do
+for t in fuzz_scene fuzz_ply fuzz_gzip; do
     "$build/fuzz/$t" -runs=0 "$root/fuzz/regressions" "$root/fuzz/seeds" 2>&1 | tail -1
 done
 
@@ -46,11 +47,13 @@ if [ "$jobs" -gt 1 ]; then
     run fuzz_ply corpus-ply seed-ply ply.dict 8192 & p2=$!
     wait $p1 || status=1
     wait $p2 || status=1
+    run fuzz_gzip corpus-gzip seed-gzip gzip.dict 4096 || status=1
 else
     run fuzz_scene corpus-scene seed-scene pbrt.dict 16384 || status=1
     run fuzz_ply corpus-ply seed-ply ply.dict 8192 || status=1
+    run fuzz_gzip corpus-gzip seed-gzip gzip.dict 4096 || status=1
 fi
-for t in fuzz_scene fuzz_ply; do
+for t in fuzz_scene fuzz_ply fuzz_gzip; do
     echo "== $t: $(grep -E '^Done [0-9]+ runs' "$work/$t.log" | tail -1)" \
          "$(grep -E 'stat::number_of_executed_units' "$work/$t.log" | tail -1)"
     grep -E 'ERROR|SUMMARY|Test unit written' "$work/$t.log" | head -5 || true

@@ -3,7 +3,7 @@
 # non-interactive; needs root or sudo). Skips apt entirely when everything is present.
 set -euo pipefail
 PKGS=(build-essential cmake ninja-build pkg-config
-      libembree-dev libtbb-dev libopenexr-dev libpng-dev libcli11-dev libfmt-dev
+      libembree-dev libtbb-dev libopenexr-dev libpng-dev zlib1g-dev libcli11-dev libfmt-dev
       libgtest-dev libgmock-dev libbenchmark-dev
       python3 python3-matplotlib python3-numpy
       clang libclang-rt-14-dev)

@@ -324,6 +324,8 @@ void CheckLobes(const BSDF &b, Vec3f woL, TransportMode mode, const char *name) 
         for (int k = 0; k < NSpectrumSamples; ++k)
             EXPECT_NEAR(lobes[match].weight[k], w[k], 1e-5f + 1e-4f * w[k]);
         probSeen[match] = bs.pdf;
+        // The lobe-aware MIS of the regularized connection uses the lobe's selection probability.
+        EXPECT_NEAR(lobes[match].pdf, bs.pdf, 1e-5f) << "lobe " << match;
     }
     if (b.IsSpecular()) {
         EXPECT_NEAR(probSeen[0] + probSeen[1], 1, 1e-5);

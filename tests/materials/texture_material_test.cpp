@@ -1,5 +1,5 @@
 // Texture evaluation (constant, checkerboard, image maps with wrap modes, scale and invert, RGB
-// -> spectrum) and MakeBSDF (pbrt-v4's GetBxDF parameter handling for every material).
+// -> spectrum; the other kinds: texture_test.cpp) and MakeBSDF (pbrt-v4's GetBxDF parameter handling for every material).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -30,7 +30,14 @@ TEST(Texture, ConstantAndCheckerboard) {
     FloatTexture c; c.kind = TextureKind::Constant; c.value = 0.37f;
     EXPECT_EQ(EvalFloatTexture(c, Ctx(0.2f, 0.9f), scene), 0.37f);
 
-    FloatTexture cb; cb.kind = TextureKind::Checkerboard; cb.tex1 = 0.2f; cb.tex2 = 0.9f;
+    // Checkerboard children: constants in the scene's texture arrays.
+    std::vector<FloatTexture> floats(2);
+    floats[0].value = 0.2f; floats[1].value = 0.9f;
+    std::vector<SpectrumTexture> spectra(2);
+    spectra[0].value = Spectrum::Const(0.25f); spectra[1].value = Spectrum::Const(0.75f);
+    scene.floatTextures = MakeSpan(floats);
+    scene.spectrumTextures = MakeSpan(spectra);
+    FloatTexture cb; cb.kind = TextureKind::Checkerboard; cb.tex[0] = 0; cb.tex[1] = 1;
     cb.mapping.su = 4; cb.mapping.sv = 4;
     EXPECT_EQ(EvalFloatTexture(cb, Ctx(0.1f, 0.1f), scene), 0.2f);    // (0.4, 0.4): even
     EXPECT_EQ(EvalFloatTexture(cb, Ctx(0.3f, 0.1f), scene), 0.9f);    // (1.2, 0.4): odd
@@ -40,8 +47,7 @@ TEST(Texture, ConstantAndCheckerboard) {
     EXPECT_EQ(EvalFloatTexture(cb, Ctx(0.1f, 0.1f), scene), 0.9f);
 
     SampledWavelengths lambda = Lambdas();
-    SpectrumTexture sc; sc.kind = TextureKind::Checkerboard;
-    sc.tex1 = Spectrum::Const(0.25f); sc.tex2 = Spectrum::Const(0.75f);
+    SpectrumTexture sc; sc.kind = TextureKind::Checkerboard; sc.tex[0] = 0; sc.tex[1] = 1;
     sc.mapping.su = 2; sc.mapping.sv = 2;
     EXPECT_EQ(EvalSpectrumTexture(sc, Ctx(0.25f, 0.25f), lambda, scene)[2], 0.25f);
     EXPECT_EQ(EvalSpectrumTexture(sc, Ctx(0.75f, 0.25f), lambda, scene)[1], 0.75f);

@@ -1,8 +1,9 @@
-// Tests of `lucerna info`: the SceneSummary report, and the command's output and exit codes
-// (the latter skipped when the lucerna binary has not been built).
+// Tests of `lucerna info`: the SceneSummary report, and the command's output and exit codes (the
+// test_scene target depends on the lucerna target, so the binary is there; without it, a failure).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -49,7 +50,8 @@ int RunInfo(const std::string &file, std::string *out) {
 }
 
 TEST(InfoCommand, ExitCodesAndOutput) {
-    if (!std::filesystem::exists(std::string(LUCERNA_BINARY_DIR) + "/lucerna")) GTEST_SKIP() << "lucerna binary not built";
+    const std::string binary = std::string(LUCERNA_BINARY_DIR) + "/lucerna";
+    ASSERT_TRUE(std::filesystem::exists(binary)) << binary << " is missing (test_scene depends on the lucerna target)";
     std::string out;
     EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), &out), 0) << out;
     EXPECT_TRUE(Contains(out, "resolution: 1024 x 1024")) << out;
@@ -63,10 +65,35 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     EXPECT_TRUE(Contains(err, "bad.pbrt:2:")) << err;
     EXPECT_TRUE(Contains(err, "error:")) << err;
     EXPECT_TRUE(Contains(err, "fov")) << err;
+    // An error in an included file says where it was included from.
+    std::ofstream(dir + "/top.pbrt") << "\nInclude \"bad.pbrt\"\n";
+    std::string chained;
+    EXPECT_EQ(RunInfo(dir + "/top.pbrt", &chained), 2) << chained;
+    EXPECT_TRUE(Contains(chained, "In file included from " + dir + "/top.pbrt:2:1:\n" + dir + "/bad.pbrt:2:")) << chained;
 
     std::string media;
     EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 0) << media;
     EXPECT_TRUE(Contains(media, "media: 1 (homogeneous 1)")) << media;
+
+    // A gzip-compressed scene reads as the plain one; a truncated one is exit 2 at the file.
+    std::string text, gz = dir + "/cb.pbrt.gz", cut = dir + "/cut.pbrt.gz";
+    {
+        std::ifstream in(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+        gzFile f = gzopen(gz.c_str(), "wb");
+        ASSERT_TRUE(f);
+        ASSERT_EQ(gzwrite(f, text.data(), unsigned(text.size())), int(text.size()));
+        gzclose(f);
+        std::ifstream zin(gz, std::ios::binary);
+        std::string bytes(std::istreambuf_iterator<char>(zin), {});
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    }
+    std::string zipped;
+    EXPECT_EQ(RunInfo(gz, &zipped), 0) << zipped;
+    EXPECT_TRUE(Contains(zipped, "triangles: 36")) << zipped;
+    std::string truncated;
+    EXPECT_EQ(RunInfo(cut, &truncated), 2) << truncated;
+    EXPECT_TRUE(Contains(truncated, cut + ": error: truncated gzip data")) << truncated;
 }
 
 }  // namespace

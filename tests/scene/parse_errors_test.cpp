@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
+#include "lucerna/scene/builder.h"
 #include "lucerna/scene/parser.h"
 #include "lucerna/scene/ply.h"
 #include "support/test_support.h"
@@ -211,6 +213,54 @@ TEST(ParseErrors, IncludeCycle) {
               "Import cycle: " + dir + "/self.pbrt -> " + dir + "/self.pbrt");
 }
 
+TEST(ParseErrors, IncludeChainsPrecedeTheMessage) {
+    // a.pbrt includes b.pbrt (line 2), which imports c.pbrt (line 3), which has the error.
+    std::string dir = test::TempDir("err_chain");
+    WriteFile(dir + "/a.pbrt", "WorldBegin\nInclude \"b.pbrt\"\n");
+    WriteFile(dir + "/b.pbrt", "# b\n\n  Import \"c.pbrt\"\n");
+    WriteFile(dir + "/c.pbrt", "Shape \"sphere\" \"float radius\" \"x\"\n");
+    SceneError e = FileErrorOf(dir + "/a.pbrt");
+    EXPECT_EQ(e.Format(), "In file included from " + dir + "/b.pbrt:3:3,\n"
+                          "                 from " + dir + "/a.pbrt:2:1:\n" +
+                          dir + "/c.pbrt:1:16: error: parameter \"float radius\": expected a number, but got the string \"x\"\n"
+                          "Shape \"sphere\" \"float radius\" \"x\"\n"
+                          "               ^");
+    // what() stays one line.
+    EXPECT_EQ(std::string(e.what()), dir + "/c.pbrt:1:16: error: " + e.Message());
+    // An error at the Include directive itself names the files above it.
+    WriteFile(dir + "/c.pbrt", "Include \"missing.pbrt\"\n");
+    EXPECT_EQ(FileErrorOf(dir + "/a.pbrt").Format().substr(0, 200).find("In file included from " + dir + "/b.pbrt:3:3,\n"),
+              0u);
+    // Warnings too, and the locations kept in the description.
+    WriteFile(dir + "/c.pbrt", "\nScale 0 1 1\nShape \"sphere\"\n");
+    Diagnostics diag;
+    diag.quiet = true;
+    SceneDescription d = ParseSceneFile(dir + "/a.pbrt", diag);
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_EQ(diag.warnings[0], "In file included from " + dir + "/b.pbrt:3:3,\n"
+                                "                 from " + dir + "/a.pbrt:2:1:\n" +
+                                dir + "/c.pbrt:3:1: warning: the transformation of this Shape is not invertible");
+    ASSERT_EQ(d.shapes.size(), 1u);
+    ASSERT_TRUE(d.shapes[0].loc.includedFrom);
+    EXPECT_EQ(d.shapes[0].loc.includedFrom->ToString(), dir + "/b.pbrt:3:3");
+    // Errors found after parsing, by the scene builder.
+    WriteFile(dir + "/c.pbrt", "Shape \"frobnicate\"\n");
+    try {
+        LoadScene(dir + "/a.pbrt", diag, BuildOptions{});
+        ADD_FAILURE() << "no error";
+    } catch (SceneError &b) {
+        EXPECT_EQ(b.Format().find("In file included from " + dir + "/b.pbrt:3:3,\n                 from " + dir +
+                                  "/a.pbrt:2:1:\n" + dir + "/c.pbrt:1:1: error: "),
+                  0u)
+            << b.Format();
+    }
+    // Locations in the main file have none.
+    WriteFile(dir + "/one.pbrt", "WorldBegin\nShape \"sphere\"\n");
+    SceneDescription m = ParseSceneFile(dir + "/one.pbrt", diag);
+    EXPECT_FALSE(m.shapes[0].loc.includedFrom);
+    EXPECT_EQ(m.shapes[0].loc.IncludeChain(), "");
+}
+
 TEST(ParseErrors, UnmatchedAttributeEnd) {
     SceneError e = ErrorOf("WorldBegin\nAttributeBegin\nAttributeEnd\nAttributeEnd\n");
     EXPECT_EQ(e.Message(), "unmatched \"AttributeEnd\"");
@@ -300,6 +350,30 @@ TEST(ParseErrors, MiscellaneousDirectiveErrors) {
               "\"Transform\" needs exactly 16 numbers; expected ']' but got \"1\"");
 }
 
+TEST(ParseErrors, ColorSpaceRefusalIsLocated) {
+    // The scene builder refuses color spaces other than srgb at the ColorSpace directive.
+    std::string dir = test::TempDir("err_colorspace");
+    WriteFile(dir + "/cs.pbrt", "Film \"rgb\"\n  ColorSpace \"rec2020\"\nCamera \"perspective\"\nWorldBegin\n");
+    Diagnostics diag;
+    diag.quiet = true;
+    SceneDescription d = ParseSceneFile(dir + "/cs.pbrt", diag);
+    EXPECT_EQ(d.colorSpace, "rec2020");
+    EXPECT_EQ(d.colorSpaceLoc.ToString(), dir + "/cs.pbrt:2:3");
+    try {
+        BuildScene(d, diag, BuildOptions{});
+        FAIL() << "rec2020 was accepted";
+    } catch (SceneError &e) {
+        EXPECT_EQ(e.Format(), dir + "/cs.pbrt:2:3: error: ColorSpace \"rec2020\" is not supported\n"
+                                    "  ColorSpace \"rec2020\"\n  ^");
+    }
+    // A later ColorSpace that is not adopted (one per scene) leaves the first one's location.
+    SceneDescription two = ParseSceneString("ColorSpace \"dci-p3\"\nColorSpace \"rec2020\"\n", "two.pbrt", diag);
+    EXPECT_EQ(two.colorSpace, "dci-p3");
+    EXPECT_EQ(two.colorSpaceLoc.line, 1);
+    // The default has no location.
+    EXPECT_FALSE(ParseSceneString("WorldBegin\n", "none.pbrt", diag).colorSpaceLoc.file);
+}
+
 TEST(ParseErrors, SingularShapeTransformWarns) {
     Diagnostics diag;
     diag.quiet = true;
@@ -341,34 +415,86 @@ TEST(ParseErrors, AllocationIsBounded) {
     }
 }
 
-// The fuzzers' minimized crashers stay here as regression inputs: each must parse or throw a
-// SceneError, nothing else.
-TEST(ParseErrors, FuzzRegressionsDoNotCrash) {
+// The fuzzers' minimized crashers stay here as regression inputs, each replayed with the fuzzers'
+// options (no file access, the fuzzer's value budget) and its outcome asserted: the SceneError it
+// must throw (message and location) or success. A new input in fuzz/regressions needs an entry.
+TEST(ParseErrors, FuzzRegressionsGiveTheirExpectedOutcome) {
+    struct Expected {
+        const char *file;
+        const char *message;  // nullptr: parses (or reads) without error
+        int line = 0, col = 0;  // of a scene error (PLY errors are at the plymesh reference)
+    };
+    const Expected expected[] = {
+        // The bound on the parameter values that attribute defaults copy into each shape.
+        {"scene-attribute-amplification.pbrt",
+         "the scene has more than 1048576 parameter values; refusing to read further", 525, 1},
+        {"scene-binary.pbrt", "unknown directive \"D\"", 1, 1},
+        // The bound on AttributeBegin nesting (4096; the file nests 5000 deep).
+        {"scene-deep-attributes.pbrt", "\"AttributeBegin\" nested more than 4096 deep", 4098, 1},
+        {"scene-escapes.pbrt", "unknown escape sequence '\\q' in string", 2, 54},
+        {"scene-numbers.pbrt", "parameter \"float a\": number \"0x1p99999\" is out of range", 2, 11},
+        {"scene-overflow.pbrt", "\"Scale\" makes the transformation overflow", 2, 1},
+        {"scene-singular.pbrt", "\"LookAt\": the eye and look-at points are the same", 5, 1},
+        {"ply-ascii-huge-listcount.ply",
+         "PLY file \"ply-ascii-huge-listcount.ply\": truncated: the file ends inside element \"face\" (record 1 of 1)"},
+        {"ply-ascii-inf-index.ply",
+         "PLY file \"ply-ascii-inf-index.ply\": face 0: vertex index 1e+300 is out of range (the file has 3 vertices)"},
+        {"ply-huge-count.ply",
+         "PLY file \"ply-huge-count.ply\": element \"vertex\" declares 4000000000 records, more than the 64 bytes of "
+         "data after the header can hold"},
+        {"ply-huge-list.ply",
+         "PLY file \"ply-huge-list.ply\": truncated: the file ends inside element \"face\" (record 1 of 1)"},
+        {"ply-no-props-huge.ply", nullptr},  // 10^12 records of no properties: read, nothing allocated
+    };
     std::string dir = test::SourcePath("fuzz/regressions");
-    if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no " << dir;
-    int n = 0;
-    for (const auto &entry : std::filesystem::directory_iterator(dir)) {
-        std::string path = entry.path().string();
-        std::string data;
+    ASSERT_TRUE(std::filesystem::is_directory(dir)) << "missing " << dir;
+    std::set<std::string> files;
+    for (const auto &entry : std::filesystem::directory_iterator(dir)) files.insert(entry.path().filename().string());
+    for (const Expected &x : expected) EXPECT_EQ(files.count(x.file), 1u) << x.file << " is listed but not in " << dir;
+    const FileLoc from{std::make_shared<const std::string>("scene.pbrt"), 7, 5};  // a plymesh reference
+    for (const std::string &name : files) {
+        SCOPED_TRACE(name);
+        const Expected *x = nullptr;
+        for (const Expected &e : expected)
+            if (name == e.file) x = &e;
+        if (!x) {
+            ADD_FAILURE() << name << " has no expected outcome in this test";
+            continue;
+        }
+        std::string path = dir + "/" + name, data;
         {
             std::ifstream in(path, std::ios::binary);
             data.assign(std::istreambuf_iterator<char>(in), {});
         }
         Diagnostics diag;
         diag.quiet = true;
+        bool ply = name.size() > 4 && name.substr(name.size() - 4) == ".ply";
         try {
-            if (entry.path().extension() == ".ply")
-                ReadPlyMeshFromMemory(data, path, FileLoc{}, &diag);
-            else {
-                ParseOptions opt;
+            if (ply) {
+                ReadPlyMeshFromMemory(data, name, from, &diag);
+            } else {
+                ParseOptions opt;  // as fuzz/fuzz_scene.cpp
                 opt.allowFileAccess = false;
-                ParseSceneString(data, path, diag, opt);
+                opt.maxTotalValues = size_t(1) << 20;
+                ParseSceneString(data, name, diag, opt);
             }
-        } catch (SceneError &) {
+            std::printf("[ fuzz ] %s: ok\n", name.c_str());
+            EXPECT_EQ(x->message, nullptr) << "no error";
+        } catch (SceneError &e) {
+            std::printf("[ fuzz ] %s: %s\n", name.c_str(), e.Format().substr(0, e.Format().find('\n')).c_str());
+            ASSERT_NE(x->message, nullptr) << e.Format();
+            EXPECT_EQ(e.Message(), x->message);
+            // Located: the reference for a PLY file, the input's own line:col for a scene.
+            ASSERT_TRUE(e.Loc().file);
+            if (ply) {
+                EXPECT_EQ(e.Loc().ToString(), "scene.pbrt:7:5");
+            } else {
+                EXPECT_EQ(*e.Loc().file, name);
+                EXPECT_EQ(e.Loc().line, x->line);
+                EXPECT_EQ(e.Loc().col, x->col);
+            }
         }
-        ++n;
     }
-    std::printf("[ fuzz ] replayed %d regression inputs\n", n);
 }
 
 }  // namespace lu

@@ -29,35 +29,78 @@ struct ImageData {
     WrapMode wrap = WrapMode::Repeat;
 };
 
-// uv mapping: (s, t) = (su * u + du, sv * v + dv), as pbrt-v4's UVMapping.
-struct UVMapping {
-    Float su = 1, sv = 1, du = 0, dv = 0;
+// A texture mapping (pbrt-v4's TextureMapping2D / TextureMapping3D). 2D kinds give (s, t):
+//   UV:          (su u + du, sv v + dv)
+//   Spherical:   (theta / pi, phi / 2 pi) of the direction to p in texture space
+//   Cylindrical: ((pi + atan2(y, x)) / 2 pi, z) of p in texture space
+//   Planar:      (du + dot(p, vs), dv + dot(p, vt)) of p in texture space
+// Point (3D) gives p in texture space. Texture space = textureFromRender * render space (the
+// inverse of the CTM at the Texture directive).
+enum class TextureMappingKind : uint8_t { UV, Spherical, Cylindrical, Planar, Point };
+
+struct TextureMapping {
+    TextureMappingKind kind = TextureMappingKind::UV;
+    Float su = 1, sv = 1, du = 0, dv = 0;   // uv; planar uses du, dv (pbrt-v4's udelta, vdelta)
+    Vec3f vs = Vec3f(1, 0, 0), vt = Vec3f(0, 1, 0);  // planar (pbrt-v4's v1, v2)
+    Matrix4 textureFromRender;              // every kind but UV
 };
 
-enum class TextureKind : uint8_t { Constant, ImageMap, Checkerboard };
+// The closed set of texture kinds (pbrt-v4's textures.h). Float textures use every kind but
+// Marble; spectrum textures every kind but FBm, Wrinkled and Windy. Children are indices into
+// SceneView::floatTextures / spectrumTextures (see `tex` and `amount` below); the builder keeps
+// the nesting at most MaxTextureDepth levels deep (materials/texture.h evaluates level by level).
+enum class TextureKind : uint8_t {
+    Constant,      // value
+    Scale,         // tex[0] * amount (pbrt-v4's "tex" * "scale")
+    Mix,           // (1 - amount) tex[0] + amount tex[1]
+    DirectionMix,  // w tex[0] + (1 - w) tex[1], w = |dot(n, dir)|
+    Bilerp,        // bilinear in (s, t) between v00, v01, v10, v11
+    ImageMap,      // image lookup (bilinear or nearest texel), times scale, optionally inverted
+    Checkerboard,  // tex[0] on even checks, tex[1] on odd; 2D (s, t) or 3D (Point mapping)
+    Dots,          // tex[0] inside the polka dots, tex[1] outside
+    FBm,           // fractional Brownian motion of Perlin noise at the 3D point
+    Wrinkled,      // turbulence (sum of |noise| octaves)
+    Windy,         // |FBm(0.1 p, 3 octaves)| * FBm(p, 6 octaves)
+    Marble,        // pbrt-v4's marble color spline driven by FBm
+};
 
-// Float textures (roughness, ...). ImageMap reads channel 0 (or the average of RGB).
+constexpr int MaxTextureDepth = 8;  // nesting levels of texture children below a material's texture
+
+// A float texture node (roughness, thickness, mix amounts, ...).
 struct FloatTexture {
     TextureKind kind = TextureKind::Constant;
-    Float value = 0;            // Constant
-    Float tex1 = 1, tex2 = 0;   // Checkerboard values
-    uint32_t image = NoIndex;   // ImageMap
-    Float scale = 1;            // ImageMap multiplier
-    bool invert = false;
-    UVMapping mapping;
+    bool invert = false;             // ImageMap: max(0, 1 - v)
+    bool pointFilter = false;        // ImageMap: nearest texel instead of bilinear
+    Float value = 0;                 // Constant
+    uint32_t tex[2] = {NoIndex, NoIndex};  // children in floatTextures (Scale: tex[0]; Mix, DirectionMix,
+                                           // Checkerboard, Dots: tex[0], tex[1])
+    uint32_t amount = NoIndex;       // Scale: the "scale" texture; Mix: the "amount" texture (floatTextures)
+    Float v00 = 0, v01 = 1, v10 = 0, v11 = 1;  // Bilerp
+    uint32_t image = NoIndex;        // ImageMap: one-channel image (the builder reduces RGB(A) as pbrt-v4)
+    Float scale = 1;                 // ImageMap multiplier
+    int octaves = 8;                 // FBm, Wrinkled
+    Float omega = 0.5f;              // FBm, Wrinkled ("roughness")
+    Vec3f dir = Vec3f(0, 1, 0);      // DirectionMix: unit, render space
+    TextureMapping mapping;
 };
 
-// Spectrum textures. Constant holds a Spectrum; ImageMap holds RGB texels converted per lookup
-// (RGBAlbedo for reflectances, RGBUnbounded otherwise: `unbounded`).
+// A spectrum texture node. ImageMap holds RGB texels converted per lookup (RGBAlbedo for
+// reflectances, RGBUnbounded otherwise: `unbounded`); Marble is always an albedo.
 struct SpectrumTexture {
     TextureKind kind = TextureKind::Constant;
-    Spectrum value;                    // Constant
-    Spectrum tex1, tex2;               // Checkerboard (constant spectra)
-    uint32_t image = NoIndex;          // ImageMap
-    Float scale = 1;
     bool invert = false;
+    bool pointFilter = false;
     bool unbounded = false;
-    UVMapping mapping;
+    Spectrum value;                  // Constant
+    uint32_t tex[4] = {NoIndex, NoIndex, NoIndex, NoIndex};  // children in spectrumTextures (as FloatTexture;
+                                                            // Bilerp: v00, v01, v10, v11)
+    uint32_t amount = NoIndex;       // Scale, Mix: float child (floatTextures)
+    uint32_t image = NoIndex;        // ImageMap (1 or 3 channels)
+    Float scale = 1;                 // ImageMap multiplier; Marble: point scale
+    int octaves = 8;                 // Marble
+    Float omega = 0.5f, variation = 0.2f;  // Marble
+    Vec3f dir = Vec3f(0, 1, 0);      // DirectionMix
+    TextureMapping mapping;
 };
 
 // ---- Materials ----
@@ -231,6 +274,8 @@ struct SceneView {
     Span<uint32_t> infiniteLights;  // indices of lights with no position (for escaped rays)
     Span<ImageData> images;
     Span<Float> texels;
+    Span<FloatTexture> floatTextures;        // texture children (a material holds its root textures)
+    Span<SpectrumTexture> spectrumTextures;
     Span<Distribution2D> distributions2D;
     Span<Float> distData;
     SpectrumTables spectra;

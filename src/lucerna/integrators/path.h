@@ -100,20 +100,23 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         }
         if (depth++ == ps.maxDepth) break;
         // ---- Explicit techniques at this vertex ----
-        bool specular = bsdf.IsSpecular(), regularized = false;
+        bool specular = bsdf.IsSpecular();
+        ScatterVertex here = prev;   // becomes this vertex's record (SampleDirect, SampleBSDFDirection)
         VertexMedia vm;
         vm.medium = medium;
         vm.shape = &shape;
         vm.n = si.n;
         vm.r = rPath;
         SampledSpectrum Ld;
-        if (SampleDirect(si, bsdf, specular, prev, vm, lambda, sampler, scene, tracer, ps, st, &Ld, &regularized)) {
+        DirectTechnique t = SampleDirect(si, bsdf, specular, prev, vm, lambda, sampler, scene, tracer, ps, st, &Ld, &here);
+        if (t != DirectTechnique::None) {
             SampledSpectrum c = beta * Ld;
-            if (regularized) st.regEnergy += c.Average();
+            if (t == DirectTechnique::Regularized) st.regEnergy += c.Average();
             L += c;
         }
         // ---- BSDF sampling ----
-        if (!SampleBSDFDirection(si, bsdf, regularized, sampler, beta, etaScale, prev, ray)) break;
+        if (!SampleBSDFDirection(si, bsdf, sampler, beta, etaScale, here, ray)) break;
+        prev = here;
         if (scene.walkInterfaces) {
             medium = MediumAfter(shape, si.n, ray.d, medium);
             r.l = r.u;

@@ -144,35 +144,64 @@ LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, c
 
 // ---- The regularized connection (integrators/regularization.h) ----
 
-// One light sample at a specular vertex, tested against the cone of every Dirac lobe; each lobe
-// it falls in is weighted against the implicit technique that picks that lobe (with the lobe's
-// probability: lobe-aware MIS) and hits the light. A light that no lobe's cone can reach is not
-// sampled (same random numbers consumed, same result). deltaLightsOnly (the vertex ends a chain of
-// Dirac vertices from the camera: the pixel integral samples the paths to area and infinite
-// lights there, unbiased) connects only to point, spot and distant lights.
+// Light selection at a specular vertex p with Dirac lobes `lobes`: only the lights the technique
+// may connect to, in proportion to their power (LightPMF): eligible ones (deltaOnly: point, spot
+// and distant lights; no uniform infinite light when allowIncompletePDF leaves it to BSDF
+// sampling) that some lobe's cone can reach (conservative test on the light's bounding sphere;
+// lights without bounds always). The emitter-hit weight uses the same pmf: LightPMF / total.
+LU_INLINE bool RegularizedCandidate(const SceneView &scene, uint32_t li, Vec3f p, const SpecularLobe *lobes, int n,
+                                    Float radius, bool deltaOnly, bool allowIncompletePDF) {
+    const Light &light = scene.lights[li];
+    if (deltaOnly && !IsDeltaLight(light)) return false;
+    if (allowIncompletePDF && light.kind == LightKind::UniformInfinite) return false;
+    if (light.boundRadius < 0) return true;
+    for (int i = 0; i < n; ++i)
+        if (RegularizedConeMayReach(p, lobes[i].wi, light.boundCenter, light.boundRadius, radius)) return true;
+    return false;
+}
+// The total pmf of the candidates (0: none).
+LU_INLINE Float RegularizedCandidatePmf(const SceneView &scene, Vec3f p, const SpecularLobe *lobes, int n, Float radius,
+                                        bool deltaOnly, bool allowIncompletePDF) {
+    Float total = 0;
+    for (uint32_t li = 0; li < scene.lights.size; ++li)
+        if (RegularizedCandidate(scene, li, p, lobes, n, radius, deltaOnly, allowIncompletePDF)) total += LightPMF(scene, li);
+    return total;
+}
+// Picks a candidate with probability LightPMF / total (u in [0, 1)).
+LU_INLINE LightPick PickRegularizedCandidate(const SceneView &scene, Vec3f p, const SpecularLobe *lobes, int n,
+                                             Float radius, bool deltaOnly, bool allowIncompletePDF, Float total, Float u) {
+    LightPick pick;
+    Float target = u * total, run = 0;
+    for (uint32_t li = 0; li < scene.lights.size; ++li) {
+        if (!RegularizedCandidate(scene, li, p, lobes, n, radius, deltaOnly, allowIncompletePDF)) continue;
+        Float pmf = LightPMF(scene, li);
+        if (pmf <= 0) continue;
+        pick.light = li;
+        pick.pmf = pmf / total;
+        run += pmf;
+        if (target < run) break;
+    }
+    return pick;
+}
+
+// One light sample at a specular vertex among the candidates (total pmf candidatePmf > 0), tested
+// against the cone of every Dirac lobe; each lobe it falls in is weighted against the implicit
+// technique that picks that lobe (with the lobe's probability: lobe-aware MIS) and hits the light.
 template <typename Tracer>
-LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
+LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const SpecularLobe *lobes, int n,
+                                        Float candidatePmf, bool deltaOnly, const VertexMedia &vm,
                                         const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                         const Tracer &tracer, const RegularizationParams &rp, LightStrategy strategy,
-                                        bool deltaLightsOnly,
                                         PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
-    LightPick pick = PickLight(scene, uLight);
+    bool allowIncomplete = AllowIncompletePDF(strategy);
+    LightPick pick = PickRegularizedCandidate(scene, si.p, lobes, n, rp.radius, deltaOnly, allowIncomplete,
+                                              candidatePmf, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
-    if (deltaLightsOnly && !IsDeltaLight(light)) return SampledSpectrum(0);
-    SpecularLobe lobes[2];
-    int n = bsdf.SpecularLobes(si.wo, lobes);
-    if (light.boundRadius >= 0) {
-        bool reachable = false;
-        for (int i = 0; i < n; ++i)
-            reachable |= RegularizedConeMayReach(si.p, lobes[i].wi, light.boundCenter, light.boundRadius, rp.radius);
-        if (!reachable) return SampledSpectrum(0);
-    }
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, AllowIncompletePDF(strategy), &ls))
-        return SampledSpectrum(0);
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, allowIncomplete, &ls)) return SampledSpectrum(0);
     Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
     Float pdfConeW = ConePdfW(oneMinusCos);
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
@@ -215,7 +244,8 @@ struct ScatterVertex {
     Float pdfBsdfW = 1;        // pdf of the sampled direction (proportional samples: the BSDF's PDF)
     bool camera = true;        // the ray is a camera ray: nothing else can sample what it hits
     bool specular = false;     // the sampled lobe is a Dirac lobe
-    bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there
+    bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there,
+    Float candidatePmf = 0;    // ... choosing among lights whose LightPMFs sum to this
     bool allSpecular = true;   // every vertex of the path so far (from the camera) sampled a Dirac lobe
 };
 
@@ -223,27 +253,32 @@ struct ScatterVertex {
 
 // Direct light at vertex si by every explicit technique that applies there: NEE at non-specular
 // vertices, the regularized connection at specular ones (when the pass regularizes). `in` is the
-// vertex the path came from. Returns false when none applies; *regularized tells whether the
-// regularized connection ran and could have sampled area and infinite lights.
+// vertex the path came from; `out` (the record of this vertex for the next emitter hit) learns
+// whether the regularized connection could have sampled area and infinite lights, and among which.
+// Returns which technique ran: None when none applies (no random numbers are then consumed).
+enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
 template <typename Tracer>
-LU_HD bool SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
-                        const VertexMedia &vm, const SampledWavelengths &lambda, Sampler &sampler,
-                        const SceneView &scene, const Tracer &tracer, const PathSettings &ps, PathStats &st,
-                        SampledSpectrum *Ld, bool *regularized) {
-    *regularized = false;
+LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
+                                   const VertexMedia &vm, const SampledWavelengths &lambda, Sampler &sampler,
+                                   const SceneView &scene, const Tracer &tracer, const PathSettings &ps, PathStats &st,
+                                   SampledSpectrum *Ld, ScatterVertex *out) {
+    out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
         *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy);
-        return true;
+        return DirectTechnique::LightSample;
     }
-    if (ps.reg.enabled) {
-        // Selectivity: after Dirac vertices only (from the camera), area and infinite lights are
-        // sampled without bias by the pixel integral; only delta lights need the technique there.
-        bool deltaOnly = in.allSpecular;
-        *Ld = SampleRegularized(si, bsdf, vm, lambda, sampler, scene, tracer, ps.reg, ps.strategy, deltaOnly, st);
-        *regularized = !deltaOnly;
-        return true;
-    }
-    return false;
+    if (!ps.reg.enabled) return DirectTechnique::None;
+    SpecularLobe lobes[2];
+    int n = bsdf.SpecularLobes(si.wo, lobes);
+    // Selectivity: after Dirac vertices only (from the camera) the pixel integral samples the paths
+    // to area and infinite lights without bias; only delta lights need the technique there.
+    bool deltaOnly = in.allSpecular;
+    Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, ps.reg.radius, deltaOnly, AllowIncompletePDF(ps.strategy));
+    if (!(total > 0)) return DirectTechnique::None;
+    *Ld = SampleRegularized(si, lobes, n, total, deltaOnly, vm, lambda, sampler, scene, tracer, ps.reg, ps.strategy, st);
+    out->regularized = !deltaOnly;
+    out->candidatePmf = total;
+    return DirectTechnique::Regularized;
 }
 
 // ---- BSDF sampling, and the emitters it hits ----
@@ -256,6 +291,7 @@ LU_INLINE Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView 
     if (v.camera || (v.specular && !v.regularized)) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {
+        pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
         Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d));   // lobe-aware
         return RegularizedHitWeight(pdfConeW, r.l[0] * pdfLightW) * WavelengthWeight(r.u, pdfConeW, r.l, pdfLightW, lambda);
@@ -277,6 +313,7 @@ LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene,
     if (v.camera || (v.specular && !v.regularized)) return 1;
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW
+        pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
         return RegularizedHitWeight(v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
     }
@@ -285,7 +322,8 @@ LU_INLINE Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene,
 
 // Samples the BSDF at si for the next direction: updates the throughput beta, the radiance scale
 // for Russian roulette, the record v of this vertex and the ray. False when the path ends.
-LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsdf, bool regularized, Sampler &sampler,
+// v holds the vertex's record from SampleDirect (regularized, candidatePmf) and is completed here.
+LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsdf, Sampler &sampler,
                                    SampledSpectrum &beta, Float &etaScale, ScatterVertex &v, Ray &ray) {
     Float uc = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
@@ -296,7 +334,7 @@ LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsd
     v.camera = false;
     v.specular = bs.IsSpecular();
     v.allSpecular = v.allSpecular && v.specular;
-    v.regularized = v.specular && regularized;
+    v.regularized = v.specular && v.regularized;
     v.ctx = MakeLightContext(si);
     if (bs.IsTransmission()) etaScale *= Sqr(bs.eta);
     ray.o = OffsetRayOrigin(si.p, si.n, bs.wi);

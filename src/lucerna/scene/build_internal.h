@@ -91,7 +91,11 @@ struct BuildContext {
     std::map<std::string, FloatTexture> floatTextureCache;
     std::map<std::pair<std::string, int>, SpectrumTexture> spectrumTextureCache;
     std::set<std::string> texturesBuilding;  // cycle detection
-    std::map<const TextureEntity *, uint32_t> textureImages;  // imagemap entity -> images index
+    // Named textures as children of other textures: their index in scene.floatTextures /
+    // spectrumTextures (stored once per name and spectrum type).
+    std::map<std::string, uint32_t> floatTextureNodes;
+    std::map<std::pair<std::string, int>, uint32_t> spectrumTextureNodes;
+    std::map<std::string, LoadedImage> textureImageCache;  // file, encoding, channel reduction -> texels
 
     // Materials: desc.materials[i] -> scene.materials index (NoIndex: interface).
     std::vector<uint32_t> anonymousMaterials;
@@ -120,9 +124,24 @@ std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary
 // A named spectrum or a spectrum file (relative to the scene directory); SceneError at loc if neither.
 Spectrum NamedOrFileSpectrum(BuildContext &ctx, const std::string &name, const FileLoc &loc);
 
+// ---- build_textures.cpp ----
+
+// Interprets every Texture directive (pbrt-v4 creates unused ones too, so their errors surface).
+void IndexTextures(BuildContext &ctx);
+// pbrt-v4's TextureParameterDictionary: a "float" / "texture" parameter as a float texture
+// (nullopt when absent), and a spectrum ("rgb", "spectrum", "blackbody") / "texture" parameter as
+// a spectrum texture of the given type. Texture references are built on first use.
+std::optional<FloatTexture> GetFloatTextureOrNull(BuildContext &ctx, const ParameterDictionary &params,
+                                                  const std::string &name);
+FloatTexture GetFloatTexture(BuildContext &ctx, const ParameterDictionary &params, const std::string &name, Float def);
+std::optional<SpectrumTexture> GetSpectrumTextureOrNull(BuildContext &ctx, const ParameterDictionary &params,
+                                                        const std::string &name, SpectrumType type);
+SpectrumTexture GetSpectrumTexture(BuildContext &ctx, const ParameterDictionary &params, const std::string &name,
+                                   SpectrumType type, const Spectrum &def);
+SpectrumTexture ConstantSpectrumTexture(const Spectrum &s, SpectrumType type);
+
 // ---- build_materials.cpp ----
 
-void IndexTextures(BuildContext &ctx);
 void BuildMaterials(BuildContext &ctx);
 // Material of a shape: scene.materials index or NoIndex (interface); *type gets the pbrt type name.
 uint32_t ResolveShapeMaterial(BuildContext &ctx, const ShapeEntity &shape, std::string *type);
@@ -138,7 +157,8 @@ std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirecto
 
 // SceneError at the offending parameter of `p` for values that would render NaN, infinity or
 // negative radiance (negative roughness or thickness, eta <= 0, |g| > 1, nsamples < 1).
-void CheckMaterialValues(const Material &m, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner);
+void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
+                         const FileLoc &loc, const std::string &owner);
 
 // ---- build_media.cpp ----
 

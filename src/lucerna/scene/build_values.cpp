@@ -15,18 +15,39 @@ std::string Number(double x) {
     return buf;
 }
 
-// The values a float texture can take when the builder knows them (constant, checkerboard).
-bool KnownRange(const FloatTexture &t, Float *lo, Float *hi) {
-    if (t.kind == TextureKind::Constant) {
+// The values a float texture can take when the builder knows them: constants, and checkerboards,
+// scales and mixes (by a constant amount in [0, 1]) of textures it knows (children in `nodes`).
+bool KnownRange(const FloatTexture &t, const std::vector<FloatTexture> &nodes, Float *lo, Float *hi, int depth = 0) {
+    auto child = [&](uint32_t i, Float *l, Float *h) {
+        return i < nodes.size() && depth < MaxTextureDepth && KnownRange(nodes[i], nodes, l, h, depth + 1);
+    };
+    Float l0, h0, l1, h1;
+    switch (t.kind) {
+    case TextureKind::Constant:
         *lo = *hi = t.value;
         return true;
-    }
-    if (t.kind == TextureKind::Checkerboard) {
-        *lo = Min(t.tex1, t.tex2);
-        *hi = Max(t.tex1, t.tex2);
+    case TextureKind::Checkerboard:
+        if (!child(t.tex[0], &l0, &h0) || !child(t.tex[1], &l1, &h1)) return false;
+        *lo = Min(l0, l1);
+        *hi = Max(h0, h1);
+        return true;
+    case TextureKind::Scale: {
+        if (!child(t.tex[0], &l0, &h0) || !child(t.amount, &l1, &h1)) return false;
+        Float p[4] = {l0 * l1, l0 * h1, h0 * l1, h0 * h1};
+        *lo = Min(Min(p[0], p[1]), Min(p[2], p[3]));
+        *hi = Max(Max(p[0], p[1]), Max(p[2], p[3]));
         return true;
     }
-    return false;
+    case TextureKind::Mix: {
+        Float la, ha;
+        if (!child(t.amount, &la, &ha) || la < 0 || ha > 1) return false;
+        if (!child(t.tex[0], &l0, &h0) || !child(t.tex[1], &l1, &h1)) return false;
+        *lo = Min(l0, l1);
+        *hi = Max(h0, h1);
+        return true;
+    }
+    default: return false;
+    }
 }
 
 // The first of `names` present in p (else the first name) and its location (else loc).
@@ -42,7 +63,7 @@ std::string Present(const ParameterDictionary &p, std::initializer_list<const ch
 
 // Fails at the parameter unless every known value of t lies in [lo, hi]. Image textures are
 // non-negative images times "scale": a negative scale is refused when lo >= 0.
-void CheckRange(const FloatTexture &t, Float lo, Float hi, const ParameterDictionary &p,
+void CheckRange(const FloatTexture &t, const std::vector<FloatTexture> &nodes, Float lo, Float hi, const ParameterDictionary &p,
                 std::initializer_list<const char *> names, const FileLoc &loc, const std::string &owner,
                 const std::string &rule) {
     FileLoc at;
@@ -50,7 +71,7 @@ void CheckRange(const FloatTexture &t, Float lo, Float hi, const ParameterDictio
     if (t.kind == TextureKind::ImageMap && lo >= 0 && t.scale < 0)
         Fail(at, owner + ": the image texture of " + Quoted(name) + " has a negative \"scale\" (" + Number(t.scale) + ")");
     Float vLo, vHi;
-    if (!KnownRange(t, &vLo, &vHi) || (vLo >= lo && vHi <= hi)) return;
+    if (!KnownRange(t, nodes, &vLo, &vHi) || (vLo >= lo && vHi <= hi)) return;
     Fail(at, owner + ": " + Quoted(name) + " " + rule + " (got " + Number(vLo < lo ? vLo : vHi) + ")");
 }
 
@@ -65,13 +86,14 @@ void CheckScale(const SpectrumTexture &t, const ParameterDictionary &p, const ch
 
 }  // namespace
 
-void CheckMaterialValues(const Material &m, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner) {
+void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
+                         const FileLoc &loc, const std::string &owner) {
     bool rough = m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric ||
                  m.kind == MaterialKind::CoatedDiffuse;
     if (rough) {
         // alpha = sqrt(roughness) (remapped) or roughness itself: negative is NaN or meaningless.
-        CheckRange(m.uRoughness, 0, Infinity, p, {"uroughness", "roughness"}, loc, owner, "must not be negative");
-        CheckRange(m.vRoughness, 0, Infinity, p, {"vroughness", "roughness"}, loc, owner, "must not be negative");
+        CheckRange(m.uRoughness, nodes, 0, Infinity, p, {"uroughness", "roughness"}, loc, owner, "must not be negative");
+        CheckRange(m.vRoughness, nodes, 0, Infinity, p, {"vroughness", "roughness"}, loc, owner, "must not be negative");
     }
     CheckScale(m.reflectance, p, "reflectance", loc, owner);
     CheckScale(m.albedo, p, "albedo", loc, owner);
@@ -82,9 +104,9 @@ void CheckMaterialValues(const Material &m, const ParameterDictionary &p, const 
     if (hasEta && m.eta.kind == SpectrumKind::Constant && !(m.eta.scale > 0))
         Fail(ParamLoc(p, "eta", loc), owner + ": \"eta\" (index of refraction) must be positive (got " + Number(m.eta.scale) + ")");
     if (m.kind == MaterialKind::CoatedDiffuse) {
-        CheckRange(m.thickness, 0, Infinity, p, {"thickness"}, loc, owner, "must not be negative");
+        CheckRange(m.thickness, nodes, 0, Infinity, p, {"thickness"}, loc, owner, "must not be negative");
         // The Henyey-Greenstein phase function is negative for |g| > 1.
-        CheckRange(m.g, -1, 1, p, {"g"}, loc, owner, "must be in [-1, 1]");
+        CheckRange(m.g, nodes, -1, 1, p, {"g"}, loc, owner, "must be in [-1, 1]");
         if (m.nSamples < 1) Fail(ParamLoc(p, "nsamples", loc), owner + ": \"nsamples\" must be at least 1 (got " + std::to_string(m.nSamples) + ")");
         if (m.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", loc), owner + ": \"maxdepth\" must not be negative (got " + std::to_string(m.maxDepth) + ")");
     }

@@ -33,6 +33,8 @@ SceneView HostScene::View() const {
     v.infiniteLights = SpanOf(infiniteLights);
     v.images = SpanOf(images);
     v.texels = SpanOf(texels);
+    v.floatTextures = SpanOf(floatTextures);
+    v.spectrumTextures = SpanOf(spectrumTextures);
     v.distributions2D = SpanOf(distributions2D);
     v.distData = SpanOf(distData);
     v.media = SpanOf(media);
@@ -354,7 +356,7 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
     BuildContext ctx{desc, diag, opts, *scene};
 
     if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
-        FailUnsupported({}, "ColorSpace " + Quoted(desc.colorSpace));
+        FailUnsupported(desc.colorSpaceLoc, "ColorSpace " + Quoted(desc.colorSpace));
     for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
 
     // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).

@@ -59,6 +59,8 @@ class HostScene {
     std::vector<uint32_t> infiniteLights;
     std::vector<ImageData> images;
     std::vector<Float> texels;
+    std::vector<FloatTexture> floatTextures;       // texture children (SceneView::floatTextures)
+    std::vector<SpectrumTexture> spectrumTextures;
     std::vector<Distribution2D> distributions2D;
     std::vector<Float> distData;
     std::vector<Medium> media;

@@ -1,6 +1,7 @@
 // Lucerna scene reader: the parsed pbrt-v4 scene, before interpretation (host only).
-// The parser (parser.cpp) fills a SceneDescription with entities that keep their parameters
-// and source locations; the builder (builder.cpp) interprets them into SceneData.
+// The parser (parser.cpp) drives a SceneDescriptionBuilder (description_builder.cpp) that fills a
+// SceneDescription with entities that keep their parameters and source locations; the scene
+// builder (builder.cpp) interprets them into SceneData.
 // Modeled on pbrt-v4's BasicScene entities.
 #pragma once
 
@@ -123,6 +124,7 @@ struct SceneDescription {
     CameraEntity camera;
     SceneEntity film, sampler, integrator, filter, accelerator;
     std::string colorSpace = "srgb";
+    FileLoc colorSpaceLoc;  // the ColorSpace directive that chose colorSpace (none for the default)
     std::vector<std::pair<std::string, FileLoc>> options;  // Option directives, as written
 
     // World.

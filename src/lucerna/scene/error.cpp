@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+
+#include <zlib.h>
 
 namespace lu {
 
@@ -13,6 +14,15 @@ std::string FileLoc::ToString() const {
     if (line > 0) {
         s += ':' + std::to_string(line);
         if (col > 0) s += ':' + std::to_string(col);
+    }
+    return s;
+}
+
+std::string FileLoc::IncludeChain() const {
+    std::string s;
+    for (const FileLoc *from = includedFrom.get(); from; from = from->includedFrom.get()) {
+        s += s.empty() ? "In file included from " : "                 from ";
+        s += from->ToString() + (from->includedFrom ? ",\n" : ":\n");
     }
     return s;
 }
@@ -26,31 +36,36 @@ SceneError::SceneError(FileLoc loc, std::string message)
     : std::runtime_error(LocPrefix(loc) + "error: " + message), loc_(std::move(loc)),
       message_(std::move(message)) {}
 
-// Reads line `line` (1-based) of `path`, reading at most a bounded number of bytes.
+// Reads line `line` (1-based) of `path`, reading at most a bounded number of bytes; gzip files are
+// decompressed (zlib's gzread passes other files through unchanged).
 static bool ReadSourceLine(const std::string &path, int line, std::string *out) {
-    std::ifstream in(path, std::ios::binary);
+    gzFile in = gzopen(path.c_str(), "rb");
     if (!in) return false;
     constexpr size_t maxBytes = size_t(1) << 30;
     size_t read = 0;
     int current = 1;
     std::string s;
     char buf[1 << 14];
-    while (in && read < maxBytes) {
-        in.read(buf, sizeof(buf));
-        std::streamsize n = in.gcount();
+    bool found = false;
+    while (!found && read < maxBytes) {
+        int n = gzread(in, buf, sizeof(buf));
         if (n <= 0) break;
         read += size_t(n);
-        for (std::streamsize i = 0; i < n; ++i) {
+        for (int i = 0; i < n && !found; ++i) {
             char c = buf[i];
             if (c == '\n') {
-                if (current == line) { *out = s; return true; }
-                ++current;
+                if (current == line) found = true;
+                else ++current;
                 continue;
             }
             if (current == line && s.size() < 4096) s.push_back(c);
         }
     }
-    if (current == line) { *out = s; return true; }
+    gzclose(in);
+    if (found || current == line) {
+        *out = s;
+        return true;
+    }
     return false;
 }
 
@@ -79,7 +94,7 @@ static void SourceAndCaret(std::string line, int col, std::string *src, std::str
 }
 
 std::string SceneError::Format() const {
-    std::string s = LocPrefix(loc_) + "error: " + message_;
+    std::string s = loc_.IncludeChain() + LocPrefix(loc_) + "error: " + message_;
     if (loc_.line <= 0) return s;
     std::string line = sourceLine_;
     if (line.empty() && loc_.file && !ReadSourceLine(*loc_.file, loc_.line, &line)) return s;
@@ -90,7 +105,7 @@ std::string SceneError::Format() const {
 }
 
 void Diagnostics::Warning(const FileLoc &loc, const std::string &message) {
-    std::string s = LocPrefix(loc) + "warning: " + message;
+    std::string s = loc.IncludeChain() + LocPrefix(loc) + "warning: " + message;
     if (!quiet) std::fprintf(stderr, "%s\n", s.c_str());
     warnings.push_back(std::move(s));
 }

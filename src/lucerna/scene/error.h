@@ -14,8 +14,13 @@ namespace lu {
 struct FileLoc {
     std::shared_ptr<const std::string> file;  // shared by all tokens of one file
     int line = 0, col = 0;
+    // The Include/Import directive that opened `file` (itself with its own), null for the main file.
+    std::shared_ptr<const FileLoc> includedFrom;
     std::string Filename() const { return file ? *file : std::string("<unknown>"); }
     std::string ToString() const;  // "file:line:col"
+    // "In file included from a.pbrt:3:1,\n                 from main.pbrt:12:1:\n" as gcc prints
+    // it, innermost first; "" for a location in the main file.
+    std::string IncludeChain() const;
 };
 
 // Bad input: thrown by the reader and the scene builder, caught by the CLI (exit 2).
@@ -24,7 +29,7 @@ class SceneError : public std::runtime_error {
     SceneError(FileLoc loc, std::string message);
     const FileLoc &Loc() const { return loc_; }
     const std::string &Message() const { return message_; }
-    // The full diagnostic: "file:line:col: error: message\n<source line>\n<caret>".
+    // The full diagnostic: the include chain, "file:line:col: error: message\n<source line>\n<caret>".
     std::string Format() const;
     // The offending source line, when the reader has it in memory (in-memory scenes); when
     // empty, Format() reads the line from loc's file. (Additive; set by the parser.)
@@ -37,8 +42,8 @@ class SceneError : public std::runtime_error {
     std::string sourceLine_;
 };
 
-// Warnings go to stderr as "file:line:col: warning: message" and are also collected so that
-// `lucerna info` and tests can list them.
+// Warnings go to stderr as "file:line:col: warning: message" (after the include chain, if any) and
+// are also collected so that `lucerna info` and tests can list them.
 struct Diagnostics {
     std::vector<std::string> warnings;     // formatted lines
     std::vector<std::string> unsupported;  // names of unsupported features seen (e.g. "Integrator \"sppm\"")

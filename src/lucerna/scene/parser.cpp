@@ -1,18 +1,16 @@
 // Lucerna scene reader: the pbrt-v4 text-format parser. Directive syntax follows pbrt-v4's
-// parser.cpp; the graphics state (CTM, attributes, materials, area lights, instancing, named
-// coordinate systems) follows BasicSceneBuilder in pbrt-v4's scene.cpp, with every bad input a
-// SceneError at its file:line:col instead of an exit.
+// parser.cpp: the parser reads arguments and parameter lists, follows Include/Import, and hands
+// each directive to a ParserTarget; every syntax error is a SceneError at its file:line:col.
 #include "lucerna/scene/parser.h"
 
 #include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <set>
-#include <unordered_map>
+#include <memory>
 
+#include "lucerna/scene/gzip.h"
 #include "lucerna/scene/tokenizer.h"
 
 namespace lu {
@@ -43,154 +41,22 @@ static bool FileExists(const std::string &path) {
     return std::filesystem::exists(path, ec);
 }
 
+// ---- The value budget ----
+
+void ValueBudget::Spend(size_t n, const FileLoc &loc) {
+    used_ += n;
+    if (used_ > limit_)
+        throw SceneError(loc, "the scene has more than " + std::to_string(limit_) +
+                                  " parameter values; refusing to read further");
+}
+
+size_t ValueBudget::Cost(const std::vector<ParsedParameter> &ps) {
+    size_t n = 0;
+    for (const ParsedParameter &p : ps) n += Cost(p);
+    return n;
+}
+
 namespace {
-
-// ---- Transforms in double precision (pbrt-v4's transform.cpp conventions) ----
-
-struct DMatrix {
-    double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
-    bool operator==(const DMatrix &o) const { return std::memcmp(m, o.m, sizeof(m)) == 0; }
-};
-
-DMatrix Mul(const DMatrix &a, const DMatrix &b) {
-    DMatrix r;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-            double s = 0;
-            for (int k = 0; k < 4; ++k) s += a.m[i][k] * b.m[k][j];
-            r.m[i][j] = s;
-        }
-    return r;
-}
-
-// Gauss-Jordan with partial pivoting; false if singular or not finite.
-bool Invert(const DMatrix &a, DMatrix *out) {
-    double m[4][8];
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-            if (!std::isfinite(a.m[i][j])) return false;
-            m[i][j] = a.m[i][j];
-            m[i][j + 4] = i == j;
-        }
-    double scale = 0;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) scale = std::max(scale, std::abs(a.m[i][j]));
-    if (scale == 0) return false;
-    for (int c = 0; c < 4; ++c) {
-        int piv = c;
-        for (int r = c + 1; r < 4; ++r)
-            if (std::abs(m[r][c]) > std::abs(m[piv][c])) piv = r;
-        if (std::abs(m[piv][c]) <= 1e-300) return false;
-        if (piv != c)
-            for (int j = 0; j < 8; ++j) std::swap(m[c][j], m[piv][j]);
-        double inv = 1 / m[c][c];
-        for (int j = 0; j < 8; ++j) m[c][j] *= inv;
-        for (int r = 0; r < 4; ++r)
-            if (r != c && m[r][c] != 0) {
-                double f = m[r][c];
-                for (int j = 0; j < 8; ++j) m[r][j] -= f * m[c][j];
-            }
-    }
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-            out->m[i][j] = m[i][j + 4];
-            if (!std::isfinite(out->m[i][j])) return false;
-        }
-    return true;
-}
-
-// True if every entry is finite and representable as a Float.
-bool FitsFloat(const DMatrix &d) {
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            if (!(std::abs(d.m[i][j]) <= double(FLT_MAX))) return false;
-    return true;
-}
-
-Matrix4 ToMatrix4(const DMatrix &d) {  // callers check FitsFloat (NaN passes through)
-    Matrix4 r;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-            double x = d.m[i][j];
-            r.m[i][j] = std::abs(x) <= double(FLT_MAX) ? Float(x) : std::numeric_limits<Float>::quiet_NaN();
-        }
-    return r;
-}
-
-DMatrix TranslateM(double x, double y, double z) {
-    DMatrix r;
-    r.m[0][3] = x;
-    r.m[1][3] = y;
-    r.m[2][3] = z;
-    return r;
-}
-
-DMatrix ScaleM(double x, double y, double z) {
-    DMatrix r;
-    r.m[0][0] = x;
-    r.m[1][1] = y;
-    r.m[2][2] = z;
-    return r;
-}
-
-// Rotation by theta degrees about a normalized axis (right-handed sense, as pbrt-v4's Rotate).
-DMatrix RotateM(double thetaDeg, double ax, double ay, double az) {
-    double theta = thetaDeg * (3.14159265358979323846 / 180);
-    double s = std::sin(theta), c = std::cos(theta);
-    DMatrix r;
-    r.m[0][0] = ax * ax + (1 - ax * ax) * c;
-    r.m[0][1] = ax * ay * (1 - c) - az * s;
-    r.m[0][2] = ax * az * (1 - c) + ay * s;
-    r.m[1][0] = ax * ay * (1 - c) + az * s;
-    r.m[1][1] = ay * ay + (1 - ay * ay) * c;
-    r.m[1][2] = ay * az * (1 - c) - ax * s;
-    r.m[2][0] = ax * az * (1 - c) - ay * s;
-    r.m[2][1] = ay * az * (1 - c) + ax * s;
-    r.m[2][2] = az * az + (1 - az * az) * c;
-    return r;
-}
-
-struct TransformPair { DMatrix m[2]; };
-
-struct Triple { double x, y, z; };
-Triple Sub(Triple a, Triple b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Triple CrossT(Triple a, Triple b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double LengthT(Triple a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
-Triple NormalizeT(Triple a) { double l = LengthT(a); return {a.x / l, a.y / l, a.z / l}; }
-
-// ---- Graphics state (BasicSceneBuilder::GraphicsState) ----
-
-using ParamList = std::vector<ParsedParameter>;
-using SharedParams = std::shared_ptr<const ParamList>;
-
-// Attribute defaults as a chain of the Attribute directives in effect (newest last), so that
-// pushing the graphics state and adding defaults are O(1).
-struct AttributeNode {
-    ParamList params;
-    std::shared_ptr<const AttributeNode> prev;
-    size_t cost = 0;  // budget units of this node and all before it
-};
-using Attributes = std::shared_ptr<const AttributeNode>;
-
-struct GraphicsState {
-    DMatrix ctm[2];                     // start and end time (pbrt's TransformSet)
-    bool activeStart = true, activeEnd = true;
-    bool reverseOrientation = false;
-    int materialIndex = -1;
-    std::string materialName;
-    FileLoc materialLoc;
-    std::string areaLightName;
-    SharedParams areaLightParams;
-    FileLoc areaLightLoc;
-    std::string insideMedium, outsideMedium;
-    Attributes shapeAttributes, lightAttributes, materialAttributes, mediumAttributes, textureAttributes;
-};
-
-struct PushedState {
-    char kind;  // 'a' AttributeBegin/TransformBegin, 'o' ObjectBegin
-    FileLoc loc;
-    GraphicsState state;
-};
 
 const char *const KnownDirectives[] = {
     "Accelerator", "ActiveTransform", "AreaLightSource", "Attribute", "AttributeBegin", "AttributeEnd", "Camera",
@@ -323,8 +189,6 @@ class TokenStream {
         *t = peek_;
         return true;
     }
-    Tokenizer &Source() { return tok_; }
-    [[noreturn]] void Fail(const FileLoc &loc, const std::string &msg) { tok_.Fail(loc.line, loc.col, msg); }
     [[noreturn]] void Fail(const Token &t, const std::string &msg) { tok_.Fail(t.line, t.col, msg); }
 
   private:
@@ -333,106 +197,73 @@ class TokenStream {
     bool havePeek_ = false;
 };
 
+// Attaches tz's copy of the offending line to an error located in tz's file that has none (errors
+// thrown by the target), so that in-memory and compressed files show it too.
+void AttachSourceLine(SceneError &e, const Tokenizer &tz) {
+    if (e.SourceLine().empty() && e.Loc().file && e.Loc().file == tz.File())
+        e.SetSourceLine(tz.SourceLine(e.Loc().line));
+}
+
+// Reads a scene file, decompressing it if it is gzip data: "" on success, else why.
+std::string ReadSceneText(const std::string &path, std::string *text, bool *corrupt = nullptr) {
+    return ReadFileGunzipped(path, text, MaxSceneFileBytes, corrupt);
+}
+
 // ---- The parser ----
 
 class Parser {
   public:
-    Parser(Diagnostics &diag, const ParseOptions &opt) : diag_(diag), opt_(opt) {}
+    Parser(ParserTarget &target, const ParseOptions &opt, ValueBudget &budget)
+        : target_(target), opt_(opt), budget_(budget) {}
 
-    void ParseTop(Tokenizer &tz, const std::string &path) {
+    // Parses the main file and calls EndOfFiles.
+    void ParseMain(Tokenizer &tz, const std::string &path) {
         mainDir_ = DirectoryOf(path);
-        desc_.baseDirectory = mainDir_;
         includeChain_.push_back(CanonicalPath(path));
-        ParseFile(tz, mainDir_);
-        includeChain_.pop_back();
+        try {
+            ParseFile(tz, mainDir_);
+            includeChain_.pop_back();
+            target_.EndOfFiles();
+        } catch (SceneError &e) {
+            AttachSourceLine(e, tz);
+            throw;
+        }
     }
 
-    SceneDescription Finish();
-
   private:
-    // ---- statements ----
     void ParseFile(Tokenizer &tz, const std::string &dir);
     void Statement(TokenStream &ts, const Token &dir, const std::string &fileDir);
+    void IncludeFile(TokenStream &ts, const Token &dir, const std::string &fileDir, bool isImport);
 
-    // ---- argument helpers ----
+    // ---- argument readers ----
     double ReadNumber(TokenStream &ts, const Token &directive, int count);
     void ReadNumbers(TokenStream &ts, const Token &directive, double *v, int n, bool allowBrackets);
     std::string ReadString(TokenStream &ts, const Token &directive, const char *what);
-    ParamList ReadParams(TokenStream &ts);
+    ParsedParameterVector ReadParams(TokenStream &ts);
     void ReadValues(TokenStream &ts, ParsedParameter &p, const TypeInfo &ti, const Token &decl);
 
-    // ---- state helpers ----
-    void RequireWorld(TokenStream &ts, const Token &dir) {
-        if (!inWorld_) ts.Fail(dir, "\"" + std::string(dir.raw) + "\" is not allowed before WorldBegin");
-    }
-    void RequireOptions(TokenStream &ts, const Token &dir) {
-        if (inWorld_) ts.Fail(dir, "\"" + std::string(dir.raw) + "\" is not allowed after WorldBegin");
-    }
-    void ApplyTransform(TokenStream &ts, const Token &dir, const DMatrix &m, bool replace) {
-        DMatrix r[2] = {state_.ctm[0], state_.ctm[1]};
-        for (int i = 0; i < 2; ++i)
-            if (i == 0 ? state_.activeStart : state_.activeEnd) r[i] = replace ? m : Mul(state_.ctm[i], m);
-        if (!FitsFloat(r[0]) || !FitsFloat(r[1]))
-            ts.Fail(dir, "\"" + std::string(dir.raw) + "\" makes the transformation overflow");
-        state_.ctm[0] = r[0];
-        state_.ctm[1] = r[1];
-    }
-    Transform CurrentTransform(const FileLoc &loc, const char *what);
-    ParameterDictionary MakeDict(ParamList params, const Attributes &attributes, const FileLoc &loc);
-    void CountValues(size_t n, const FileLoc &loc) {
-        totalValues_ += n;
-        if (totalValues_ > opt_.maxTotalValues)
-            throw SceneError(loc, "the scene has more than " + std::to_string(opt_.maxTotalValues) +
-                                      " parameter values; refusing to read further");
-    }
-    // Budget units: one per value and one per parameter.
-    static size_t Cost(const ParsedParameter &p) { return 1 + p.numbers.size() + p.strings.size() + p.bools.size(); }
-    static size_t ValueCount(const ParamList &ps) {
-        size_t n = 0;
-        for (const ParsedParameter &p : ps) n += Cost(p);
-        return n;
-    }
-    void Push(TokenStream &ts, char kind, const Token &dir) {
-        if ((int)pushed_.size() >= opt_.maxAttributeDepth)
-            ts.Fail(dir, "\"" + std::string(dir.raw) + "\" nested more than " + std::to_string(opt_.maxAttributeDepth) +
-                             " deep");
-        pushed_.push_back(PushedState{kind, dir.Loc(), state_});
-    }
-    static std::string OpenName(const PushedState &p) { return p.kind == 'o' ? "ObjectBegin" : "AttributeBegin"; }
-    static std::string Where(const FileLoc &loc) {
-        return "line " + std::to_string(loc.line) + (loc.file ? " of " + *loc.file : "");
-    }
-    void IncludeFile(TokenStream &ts, const Token &dir, const std::string &fileDir, bool isImport);
-
-    Diagnostics &diag_;
+    ParserTarget &target_;
     ParseOptions opt_;
-    SceneDescription desc_;
-    GraphicsState state_;
-    std::vector<PushedState> pushed_;
-    size_t pushFloor_ = 0;  // pushes below this belong to an importing file
-    bool inWorld_ = false, sawDirective_ = false;
-    std::map<std::string, TransformPair> namedCoordinateSystems_;
-    std::string activeInstance_;  // name of the ObjectBegin being defined, "" if none
-    std::set<std::string> floatTextureNames_, spectrumTextureNames_, mediumNames_;
-    std::vector<std::pair<std::string, FileLoc>> namedMaterialUses_;  // (name, NamedMaterial loc) per shape
+    ValueBudget &budget_;
     std::string mainDir_;
-    std::vector<std::string> includeChain_;
-    size_t totalValues_ = 0;
-    bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedTransformTimes_ = false, warnedActiveTransform_ = false;
-    bool colorSpaceSet_ = false, rgbSeen_ = false;
+    std::vector<std::string> includeChain_;  // canonical paths of the files being read
 };
 
 void Parser::ParseFile(Tokenizer &tz, const std::string &dir) {
     TokenStream ts(tz);
     Token t;
-    while (ts.Next(&t)) {
-        if (t.kind != Token::Word) {
-            if (t.kind == Token::String)
-                ts.Fail(t, "unexpected string " + Show(t) + " where a directive was expected");
-            ts.Fail(t, "unexpected '" + std::string(t.raw) + "' where a directive was expected");
+    try {
+        while (ts.Next(&t)) {
+            if (t.kind != Token::Word) {
+                if (t.kind == Token::String)
+                    ts.Fail(t, "unexpected string " + Show(t) + " where a directive was expected");
+                ts.Fail(t, "unexpected '" + std::string(t.raw) + "' where a directive was expected");
+            }
+            Statement(ts, t, dir);
         }
-        sawDirective_ = true;
-        Statement(ts, t, dir);
+    } catch (SceneError &e) {
+        AttachSourceLine(e, tz);
+        throw;
     }
 }
 
@@ -475,8 +306,8 @@ std::string Parser::ReadString(TokenStream &ts, const Token &directive, const ch
     return t.Text();
 }
 
-ParamList Parser::ReadParams(TokenStream &ts) {
-    ParamList params;
+ParsedParameterVector Parser::ReadParams(TokenStream &ts) {
+    ParsedParameterVector params;
     Token t;
     while (ts.Peek(&t) && t.kind == Token::String) {
         ts.Next(&t);
@@ -502,8 +333,7 @@ ParamList Parser::ReadParams(TokenStream &ts) {
         p.name = words[1];
         p.loc = t.Loc();
         ReadValues(ts, p, *ti, t);
-        CountValues(Cost(p), p.loc);
-        if (p.type == "rgb") rgbSeen_ = true;
+        budget_.Spend(ValueBudget::Cost(p), p.loc);
         params.push_back(std::move(p));
     }
     return params;
@@ -579,8 +409,9 @@ void Parser::ReadValues(TokenStream &ts, ParsedParameter &p, const TypeInfo &ti,
             if (v.kind == Token::CloseBracket) break;
             if (v.kind == Token::OpenBracket) valueError(v, "unexpected '[' inside a value list");
             addValue(v, &open);
-            if (p.numbers.size() + p.strings.size() + p.bools.size() + totalValues_ > opt_.maxTotalValues)
-                CountValues(p.numbers.size() + p.strings.size() + p.bools.size(), p.loc);
+            // A long list fails as soon as it exceeds the budget, before it is complete.
+            size_t n = p.numbers.size() + p.strings.size() + p.bools.size();
+            if (budget_.Exceeds(n)) budget_.Spend(n, p.loc);
         }
     } else if (v.kind == Token::CloseBracket) {
         valueError(v, "unexpected ']'");
@@ -607,45 +438,10 @@ void Parser::ReadValues(TokenStream &ts, ParsedParameter &p, const TypeInfo &ti,
                           std::to_string(n) + (n == 1 ? " was given" : " were given"));
 }
 
-Transform Parser::CurrentTransform(const FileLoc &loc, const char *what) {
-    if (!(state_.ctm[0] == state_.ctm[1]) && !warnedMotion_) {
-        warnedMotion_ = true;
-        diag_.Unsupported(loc, "motion blur (ActiveTransform)",
-                          "the start-time transform is used");
-    }
-    const DMatrix &m = state_.ctm[0];
-    DMatrix inv;
-    Transform t;
-    t.m = ToMatrix4(m);
-    if (Invert(m, &inv) && FitsFloat(inv)) {
-        t.mInv = ToMatrix4(inv);
-    } else {
-        diag_.Warning(loc, std::string("the transformation of this ") + what + " is not invertible");
-        for (auto &row : t.mInv.m)
-            for (Float &x : row) x = std::numeric_limits<Float>::quiet_NaN();
-    }
-    return t;
-}
-
-ParameterDictionary Parser::MakeDict(ParamList params, const Attributes &attributes, const FileLoc &loc) {
-    if (!attributes) return ParameterDictionary(std::move(params));
-    // Attribute defaults come first (oldest first) so that later ones and the entity's own
-    // parameters win; they may be unused without a warning (pbrt-v4's mayBeUnused).
-    CountValues(attributes->cost, loc);
-    std::vector<const AttributeNode *> chain;
-    for (const AttributeNode *n = attributes.get(); n; n = n->prev.get()) chain.push_back(n);
-    ParamList all;
-    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
-        for (const ParsedParameter &a : (*it)->params) {
-            all.push_back(a);
-            all.back().lookedUp = true;
-        }
-    for (ParsedParameter &p : params) all.push_back(std::move(p));
-    return ParameterDictionary(std::move(all));
-}
-
 void Parser::IncludeFile(TokenStream &ts, const Token &dir, const std::string &fileDir, bool isImport) {
     std::string name = ReadString(ts, dir, "file name");
+    const FileLoc loc = dir.Loc();
+    target_.IncludeBegin(isImport, loc);
     if (!opt_.allowFileAccess) ts.Fail(dir, "\"" + std::string(dir.raw) + "\" is disabled (no file access)");
     if (name.empty()) ts.Fail(dir, "\"" + std::string(dir.raw) + "\" needs a file name");
     if ((int)includeChain_.size() > opt_.maxIncludeDepth)
@@ -666,418 +462,165 @@ void Parser::IncludeFile(TokenStream &ts, const Token &dir, const std::string &f
             ts.Fail(dir, std::string(isImport ? "Import" : "Include") + " cycle: " + chain + canonical);
         }
     std::string text;
-    std::string why = ReadFileBytes(path, &text, MaxSceneFileBytes);
+    std::string why = ReadSceneText(path, &text);
     if (!why.empty())
         ts.Fail(dir, "cannot read " + std::string(isImport ? "imported" : "included") + " file \"" + path + "\": " + why);
-    auto sub = std::make_unique<Tokenizer>(std::move(text), path);
+    Tokenizer sub(std::move(text), path, loc);
     includeChain_.push_back(canonical);
-    if (!isImport) {
-        ParseFile(*sub, DirectoryOf(path));
-    } else {
-        // Import: the imported file sees a copy of the graphics state and cannot change ours;
-        // its AttributeBegin/End must balance (pbrt-v4's CopyForImport / MergeImported).
-        GraphicsState saved = state_;
-        size_t savedFloor = pushFloor_;
-        pushFloor_ = pushed_.size();
-        ParseFile(*sub, DirectoryOf(path));
-        if (pushed_.size() > pushFloor_) {
-            const PushedState &open = pushed_.back();
-            throw SceneError(open.loc, OpenName(open) + " without a matching " +
-                                           (open.kind == 'o' ? "ObjectEnd" : "AttributeEnd") +
-                                           " in the imported file");
-        }
-        pushFloor_ = savedFloor;
-        state_ = std::move(saved);
-    }
+    ParseFile(sub, DirectoryOf(path));
     includeChain_.pop_back();
+    target_.IncludeEnd(isImport, loc);
 }
 
 void Parser::Statement(TokenStream &ts, const Token &dir, const std::string &fileDir) {
     const std::string_view d = dir.raw;
     const FileLoc loc = dir.Loc();
-    // Reads `"type" params...` into e, the attribute defaults of the state first.
-    auto entity = [&](SceneEntity &e, const Attributes &attributes) {
-        e.name = ReadString(ts, dir, "type name");
-        e.loc = loc;
-        e.params = MakeDict(ReadParams(ts), attributes, loc);
-    };
+    auto str = [&](const char *what) { return ReadString(ts, dir, what); };
     double v[16];
 
     // ---- transformations ----
     if (d == "Identity") {
-        ApplyTransform(ts, dir, DMatrix(), true);
+        target_.Identity(loc);
     } else if (d == "Translate") {
         ReadNumbers(ts, dir, v, 3, false);
-        ApplyTransform(ts, dir, TranslateM(v[0], v[1], v[2]), false);
+        target_.Translate(v[0], v[1], v[2], loc);
     } else if (d == "Scale") {
         ReadNumbers(ts, dir, v, 3, false);
-        ApplyTransform(ts, dir, ScaleM(v[0], v[1], v[2]), false);
+        target_.Scale(v[0], v[1], v[2], loc);
     } else if (d == "Rotate") {
         ReadNumbers(ts, dir, v, 4, false);
-        double len = std::sqrt(v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
-        if (!(len > 0) || !std::isfinite(len)) ts.Fail(dir, "\"Rotate\" needs a nonzero rotation axis");
-        ApplyTransform(ts, dir, RotateM(v[0], v[1] / len, v[2] / len, v[3] / len), false);
+        target_.Rotate(v[0], v[1], v[2], v[3], loc);
     } else if (d == "LookAt") {
         ReadNumbers(ts, dir, v, 9, false);
-        Triple eye{v[0], v[1], v[2]}, look{v[3], v[4], v[5]}, up{v[6], v[7], v[8]};
-        Triple dirv = Sub(look, eye);
-        if (!(LengthT(dirv) > 0)) ts.Fail(dir, "\"LookAt\": the eye and look-at points are the same");
-        if (!(LengthT(up) > 0)) ts.Fail(dir, "\"LookAt\": the up vector is zero");
-        dirv = NormalizeT(dirv);
-        Triple right = CrossT(NormalizeT(up), dirv);
-        if (!(LengthT(right) > 1e-12) || !std::isfinite(LengthT(right)))
-            ts.Fail(dir, "\"LookAt\": the up vector is parallel to the viewing direction");
-        right = NormalizeT(right);
-        Triple newUp = CrossT(dirv, right);
-        // worldFromCamera has columns right, up, dir, eye (pbrt-v4's LookAt); the CTM gets its inverse.
-        DMatrix worldFromCamera;
-        const Triple cols[4] = {right, newUp, dirv, eye};
-        for (int c = 0; c < 4; ++c) {
-            worldFromCamera.m[0][c] = cols[c].x;
-            worldFromCamera.m[1][c] = cols[c].y;
-            worldFromCamera.m[2][c] = cols[c].z;
-        }
-        DMatrix cameraFromWorld;
-        if (!Invert(worldFromCamera, &cameraFromWorld)) ts.Fail(dir, "\"LookAt\": degenerate viewing transformation");
-        ApplyTransform(ts, dir, cameraFromWorld, false);
+        target_.LookAt(v, v + 3, v + 6, loc);
     } else if (d == "Transform" || d == "ConcatTransform") {
         ReadNumbers(ts, dir, v, 16, true);
-        // The 16 numbers are the matrix in column-major order (translation in elements 12-14).
-        DMatrix m;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) m.m[i][j] = v[j * 4 + i];
-        ApplyTransform(ts, dir, m, d == "Transform");
+        if (d == "Transform") target_.Transform(v, loc);
+        else target_.ConcatTransform(v, loc);
     } else if (d == "CoordinateSystem") {
-        std::string name = ReadString(ts, dir, "name");
-        namedCoordinateSystems_[name].m[0] = state_.ctm[0];
-        namedCoordinateSystems_[name].m[1] = state_.ctm[1];
+        target_.CoordinateSystem(str("name"), loc);
     } else if (d == "CoordSysTransform") {
-        std::string name = ReadString(ts, dir, "name");
-        auto it = namedCoordinateSystems_.find(name);
-        if (it == namedCoordinateSystems_.end()) {
-            diag_.Warning(loc, "unknown coordinate system \"" + name + "\"; the transformation is unchanged");
-        } else {
-            state_.ctm[0] = it->second.m[0];
-            state_.ctm[1] = it->second.m[1];
-        }
+        target_.CoordSysTransform(str("name"), loc);
     } else if (d == "ActiveTransform") {
         Token t;
         if (!ts.Next(&t)) ts.Fail(dir, "unexpected end of file: \"ActiveTransform\" needs All, StartTime or EndTime");
-        if (!t.Is("All") && !warnedActiveTransform_) {
-            warnedActiveTransform_ = true;
-            diag_.Warning(loc, "ActiveTransform: motion blur is not supported; the start-time transformation is used");
-        }
-        if (t.Is("All")) state_.activeStart = state_.activeEnd = true;
-        else if (t.Is("StartTime")) { state_.activeStart = true; state_.activeEnd = false; }
-        else if (t.Is("EndTime")) { state_.activeStart = false; state_.activeEnd = true; }
+        if (t.Is("All")) target_.ActiveTransformAll(loc);
+        else if (t.Is("StartTime")) target_.ActiveTransformStartTime(loc);
+        else if (t.Is("EndTime")) target_.ActiveTransformEndTime(loc);
         else ts.Fail(t, "\"ActiveTransform\" needs All, StartTime or EndTime, but got " + Show(t));
     } else if (d == "TransformTimes") {
-        RequireOptions(ts, dir);
         ReadNumbers(ts, dir, v, 2, false);
-        if (!warnedTransformTimes_) {
-            warnedTransformTimes_ = true;
-            diag_.Warning(loc, "TransformTimes is ignored: motion blur is not supported");
-        }
-    } else if (d == "TransformBegin" || d == "AttributeBegin") {
-        if (d == "TransformBegin" && !warnedTransformBegin_) {
-            warnedTransformBegin_ = true;
-            diag_.Warning(loc, "TransformBegin/End are deprecated and should be replaced with AttributeBegin/End");
-        }
-        Push(ts, 'a', dir);
-    } else if (d == "TransformEnd" || d == "AttributeEnd") {
-        if (pushed_.size() <= pushFloor_) ts.Fail(dir, "unmatched \"" + std::string(d) + "\"");
-        if (pushed_.back().kind != 'a')
-            ts.Fail(dir, "\"" + std::string(d) + "\" closes the ObjectBegin at " + Where(pushed_.back().loc));
-        state_ = std::move(pushed_.back().state);
-        pushed_.pop_back();
+        target_.TransformTimes(v[0], v[1], loc);
+    } else if (d == "TransformBegin") {
+        target_.TransformBegin(loc);
+    } else if (d == "TransformEnd") {
+        target_.TransformEnd(loc);
+    } else if (d == "AttributeBegin") {
+        target_.AttributeBegin(loc);
+    } else if (d == "AttributeEnd") {
+        target_.AttributeEnd(loc);
     }
     // ---- rendering options ----
-    else if (d == "Camera") {
-        RequireOptions(ts, dir);
-        SceneEntity e;
-        e.name = ReadString(ts, dir, "type name");
-        ParamList params = ReadParams(ts);
-        DMatrix cameraFromWorld = state_.ctm[0], worldFromCamera;
-        if (!Invert(cameraFromWorld, &worldFromCamera) || !FitsFloat(worldFromCamera))
-            ts.Fail(dir, "the camera transformation (the CTM at \"Camera\") is not invertible");
-        desc_.camera.name = e.name;
-        desc_.camera.loc = loc;
-        desc_.camera.params = ParameterDictionary(std::move(params));
-        desc_.camera.worldFromCamera = Transform(ToMatrix4(worldFromCamera), ToMatrix4(cameraFromWorld));
-        desc_.camera.medium = state_.outsideMedium;
-        DMatrix inv1;
-        if (!Invert(state_.ctm[1], &inv1)) inv1 = worldFromCamera;
-        namedCoordinateSystems_["camera"].m[0] = worldFromCamera;
-        namedCoordinateSystems_["camera"].m[1] = inv1;
-    } else if (d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" || d == "Accelerator") {
-        RequireOptions(ts, dir);
-        SceneEntity e;
-        e.name = ReadString(ts, dir, "type name");
-        e.loc = loc;
-        e.params = ParameterDictionary(ReadParams(ts));
-        SceneEntity &target = d == "Film" ? desc_.film
-                              : d == "Sampler" ? desc_.sampler
-                              : d == "Integrator" ? desc_.integrator
-                              : d == "PixelFilter" ? desc_.filter
-                                                   : desc_.accelerator;
-        target = std::move(e);
+    else if (d == "Camera" || d == "Film" || d == "Sampler" || d == "Integrator" || d == "PixelFilter" ||
+             d == "Accelerator") {
+        std::string name = str("type name");
+        ParsedParameterVector params = ReadParams(ts);
+        if (d == "Camera") target_.Camera(name, std::move(params), loc);
+        else if (d == "Film") target_.Film(name, std::move(params), loc);
+        else if (d == "Sampler") target_.Sampler(name, std::move(params), loc);
+        else if (d == "Integrator") target_.Integrator(name, std::move(params), loc);
+        else if (d == "PixelFilter") target_.PixelFilter(name, std::move(params), loc);
+        else target_.Accelerator(name, std::move(params), loc);
     } else if (d == "ColorSpace") {
-        std::string name = ReadString(ts, dir, "color space name");
-        if (name != "srgb" && name != "rec2020" && name != "aces2065-1" && name != "dci-p3")
-            ts.Fail(dir, "unknown color space \"" + name + "\" (known: srgb, rec2020, aces2065-1, dci-p3)");
-        if (name != desc_.colorSpace) {
-            if (colorSpaceSet_ || rgbSeen_)
-                diag_.Unsupported(loc, "ColorSpace \"" + name + "\"",
-                                  "one color space per scene; \"" + desc_.colorSpace + "\" is kept");
-            else
-                desc_.colorSpace = name;
-        }
-        colorSpaceSet_ = true;
+        target_.ColorSpace(str("color space name"), loc);
     } else if (d == "Option") {
-        Token valueTok;
-        std::string name = ReadString(ts, dir, "option name");
-        if (!ts.Next(&valueTok)) ts.Fail(dir, "unexpected end of file: \"Option\" needs a value");
-        if (valueTok.kind == Token::OpenBracket || valueTok.kind == Token::CloseBracket)
-            ts.Fail(valueTok, "\"Option\" needs a single value, but got " + Show(valueTok));
-        desc_.options.emplace_back(name + " " + std::string(valueTok.raw), loc);
+        std::string name = str("option name");
+        Token value;
+        if (!ts.Next(&value)) ts.Fail(dir, "unexpected end of file: \"Option\" needs a value");
+        if (value.kind == Token::OpenBracket || value.kind == Token::CloseBracket)
+            ts.Fail(value, "\"Option\" needs a single value, but got " + Show(value));
+        target_.Option(name, std::string(value.raw), loc);
     } else if (d == "WorldBegin") {
-        RequireOptions(ts, dir);
-        if (!pushed_.empty())
-            ts.Fail(dir, "\"WorldBegin\" inside the " + OpenName(pushed_.back()) + " at " + Where(pushed_.back().loc));
-        inWorld_ = true;
-        state_.ctm[0] = state_.ctm[1] = DMatrix();
-        state_.activeStart = state_.activeEnd = true;
-        namedCoordinateSystems_["world"].m[0] = DMatrix();
-        namedCoordinateSystems_["world"].m[1] = DMatrix();
+        target_.WorldBegin(loc);
     } else if (d == "WorldEnd") {
-        diag_.Warning(loc, "\"WorldEnd\" is pbrt-v3 syntax; ignored");
+        target_.WorldEnd(loc);
     }
-    // ---- attributes ----
+    // ---- graphics state ----
     else if (d == "Attribute") {
-        std::string target = ReadString(ts, dir, "target");
-        ParamList params = ReadParams(ts);
-        Attributes *slot = target == "shape"      ? &state_.shapeAttributes
-                             : target == "light"    ? &state_.lightAttributes
-                             : target == "material" ? &state_.materialAttributes
-                             : target == "medium"   ? &state_.mediumAttributes
-                             : target == "texture"  ? &state_.textureAttributes
-                                                    : nullptr;
-        if (!slot)
-            ts.Fail(dir, "unknown Attribute target \"" + target +
-                             "\": must be \"shape\", \"light\", \"material\", \"medium\" or \"texture\"");
-        if (!params.empty()) {
-            auto node = std::make_shared<AttributeNode>();
-            node->cost = ValueCount(params) + (*slot ? (*slot)->cost : 0);
-            node->params = std::move(params);
-            node->prev = *slot;
-            *slot = std::move(node);
-        }
+        std::string target = str("target");
+        target_.Attribute(target, ReadParams(ts), loc);
     } else if (d == "ReverseOrientation") {
-        RequireWorld(ts, dir);
-        state_.reverseOrientation = !state_.reverseOrientation;
+        target_.ReverseOrientation(loc);
     } else if (d == "MediumInterface") {
-        std::string inside = ReadString(ts, dir, "medium name");
+        std::string inside = str("medium name");
         std::string outside = inside;
         Token t;
         if (ts.Peek(&t) && t.kind == Token::String) {
             ts.Next(&t);
             outside = t.Text();
         }
-        state_.insideMedium = inside;
-        state_.outsideMedium = outside;
+        target_.MediumInterface(inside, outside, loc);
     } else if (d == "MakeNamedMedium") {
-        MediumEntity e;
-        e.name = ReadString(ts, dir, "medium name");
-        e.loc = loc;
-        ParamList params = ReadParams(ts);
-        if (!mediumNames_.insert(e.name).second) ts.Fail(dir, "named medium \"" + e.name + "\" is already defined");
-        e.params = MakeDict(std::move(params), state_.mediumAttributes, loc);
-        e.renderFromObject = CurrentTransform(loc, "MakeNamedMedium");
-        desc_.media.push_back(std::move(e));
+        std::string name = str("medium name");
+        target_.MakeNamedMedium(name, ReadParams(ts), loc);
     }
-    // ---- materials and textures ----
+    // ---- materials, textures, lights, shapes ----
     else if (d == "Material") {
-        RequireWorld(ts, dir);
-        SceneEntity e;
-        entity(e, state_.materialAttributes);
-        desc_.materials.push_back(std::move(e));
-        state_.materialIndex = int(desc_.materials.size()) - 1;
-        state_.materialName.clear();
+        std::string name = str("type name");
+        target_.Material(name, ReadParams(ts), loc);
     } else if (d == "MakeNamedMaterial") {
-        RequireWorld(ts, dir);
-        std::string name = ReadString(ts, dir, "material name");
-        ParamList params = ReadParams(ts);
-        if (desc_.namedMaterials.count(name)) ts.Fail(dir, "named material \"" + name + "\" is already defined");
-        SceneEntity e;
-        e.loc = loc;
-        e.params = MakeDict(std::move(params), state_.materialAttributes, loc);
-        const ParsedParameter *type = nullptr;
-        for (const ParsedParameter &p : e.params.All())
-            if (p.name == "type") type = &p;
-        if (!type) ts.Fail(dir, "named material \"" + name + "\" has no \"string type\" parameter");
-        if (type->type != "string" || type->strings.size() != 1)
-            ts.Fail(type->loc, "named material \"" + name + "\": \"type\" must be one string, like \"string type\" \"diffuse\"");
-        type->lookedUp = true;
-        e.name = type->strings[0];
-        desc_.namedMaterials.emplace(name, std::move(e));
+        std::string name = str("material name");
+        target_.MakeNamedMaterial(name, ReadParams(ts), loc);
     } else if (d == "NamedMaterial") {
-        RequireWorld(ts, dir);
-        std::string name = ReadString(ts, dir, "material name");
-        state_.materialName = name;
-        state_.materialIndex = -1;
-        state_.materialLoc = loc;
+        target_.NamedMaterial(str("material name"), loc);
     } else if (d == "Texture") {
-        RequireWorld(ts, dir);
-        TextureEntity e;
-        e.textureName = ReadString(ts, dir, "texture name");
-        e.valueType = ReadString(ts, dir, "texture type (\"float\" or \"spectrum\")");
-        e.name = ReadString(ts, dir, "texture class");
-        e.loc = loc;
-        ParamList params = ReadParams(ts);
-        if (e.valueType != "float" && e.valueType != "spectrum")
-            ts.Fail(dir, "texture type \"" + e.valueType + "\" is unknown: must be \"float\" or \"spectrum\"");
-        auto &names = e.valueType == "float" ? floatTextureNames_ : spectrumTextureNames_;
-        if (!names.insert(e.textureName).second)
-            ts.Fail(dir, e.valueType + " texture \"" + e.textureName + "\" is already defined");
-        e.params = MakeDict(std::move(params), state_.textureAttributes, loc);
-        e.renderFromObject = CurrentTransform(loc, "Texture");
-        e.baseDirectory = fileDir;
-        (e.valueType == "float" ? desc_.floatTextures : desc_.spectrumTextures).push_back(std::move(e));
-    }
-    // ---- lights and shapes ----
-    else if (d == "LightSource") {
-        RequireWorld(ts, dir);
-        LightEntity e;
-        entity(e, state_.lightAttributes);
-        e.renderFromObject = CurrentTransform(loc, "LightSource");
-        e.outsideMedium = state_.outsideMedium;
-        desc_.lights.push_back(std::move(e));
+        std::string name = str("texture name");
+        std::string type = str("texture type (\"float\" or \"spectrum\")");
+        std::string texClass = str("texture class");
+        target_.Texture(name, type, texClass, ReadParams(ts), loc);
+    } else if (d == "LightSource") {
+        std::string name = str("type name");
+        target_.LightSource(name, ReadParams(ts), loc);
     } else if (d == "AreaLightSource") {
-        RequireWorld(ts, dir);
-        std::string name = ReadString(ts, dir, "type name");
-        ParamList params = ReadParams(ts);
-        state_.areaLightName = name;
-        state_.areaLightLoc = loc;
-        // The light attribute defaults in effect now apply (as pbrt-v4's AreaLightSource).
-        state_.areaLightParams = std::make_shared<ParamList>(MakeDict(std::move(params), state_.lightAttributes, loc).All());
+        std::string name = str("type name");
+        target_.AreaLightSource(name, ReadParams(ts), loc);
     } else if (d == "Shape") {
-        RequireWorld(ts, dir);
-        ShapeEntity e;
-        entity(e, state_.shapeAttributes);
-        e.renderFromObject = CurrentTransform(loc, "Shape");
-        e.reverseOrientation = state_.reverseOrientation;
-        e.materialIndex = state_.materialIndex;
-        e.materialName = state_.materialName;
-        e.insideMedium = state_.insideMedium;
-        e.outsideMedium = state_.outsideMedium;
-        e.baseDirectory = fileDir;
-        if (!state_.areaLightName.empty()) {
-            SceneEntity light;
-            light.name = state_.areaLightName;
-            light.loc = state_.areaLightLoc;
-            ParamList lp = state_.areaLightParams ? *state_.areaLightParams : ParamList();
-            CountValues(ValueCount(lp), loc);
-            light.params = ParameterDictionary(std::move(lp));
-            desc_.areaLights.push_back(std::move(light));
-            e.areaLightIndex = int(desc_.areaLights.size()) - 1;
-            if (!activeInstance_.empty()) diag_.Warning(loc, "area lights are not supported with object instancing");
-        }
-        if (!e.materialName.empty()) namedMaterialUses_.emplace_back(e.materialName, state_.materialLoc);
-        if (!activeInstance_.empty()) desc_.instanceDefinitions[activeInstance_].shapes.push_back(std::move(e));
-        else desc_.shapes.push_back(std::move(e));
+        std::string name = str("type name");
+        target_.Shape(name, ReadParams(ts), loc);
     }
     // ---- object instancing ----
     else if (d == "ObjectBegin") {
-        RequireWorld(ts, dir);
-        std::string name = ReadString(ts, dir, "object name");
-        if (!activeInstance_.empty())
-            ts.Fail(dir, "\"ObjectBegin\" inside the definition of object \"" + activeInstance_ + "\"");
-        if (desc_.instanceDefinitions.count(name)) ts.Fail(dir, "object \"" + name + "\" is already defined");
-        Push(ts, 'o', dir);
-        activeInstance_ = name;
-        InstanceDefinition &def = desc_.instanceDefinitions[name];
-        def.name = name;
-        def.loc = loc;
+        target_.ObjectBegin(str("object name"), loc);
     } else if (d == "ObjectEnd") {
-        RequireWorld(ts, dir);
-        if (activeInstance_.empty() || pushed_.size() <= pushFloor_) ts.Fail(dir, "unmatched \"ObjectEnd\"");
-        if (pushed_.back().kind != 'o')
-            ts.Fail(dir, "\"ObjectEnd\" closes the AttributeBegin at " + Where(pushed_.back().loc));
-        state_ = std::move(pushed_.back().state);
-        pushed_.pop_back();
-        activeInstance_.clear();
+        target_.ObjectEnd(loc);
     } else if (d == "ObjectInstance") {
-        RequireWorld(ts, dir);
-        std::string name = ReadString(ts, dir, "object name");
-        if (!activeInstance_.empty())
-            ts.Fail(dir, "\"ObjectInstance\" inside the definition of object \"" + activeInstance_ + "\"");
-        InstanceUse use;
-        use.name = name;
-        use.loc = loc;
-        use.renderFromInstance = CurrentTransform(loc, "ObjectInstance");
-        desc_.instances.push_back(std::move(use));
+        target_.ObjectInstance(str("object name"), loc);
     }
     // ---- files ----
-    else if (d == "Include") {
-        IncludeFile(ts, dir, fileDir, false);
-    } else if (d == "Import") {
-        RequireWorld(ts, dir);
-        IncludeFile(ts, dir, fileDir, true);
+    else if (d == "Include" || d == "Import") {
+        IncludeFile(ts, dir, fileDir, d == "Import");
     } else {
         ts.Fail(dir, "unknown directive \"" + std::string(d) + "\"");
     }
 }
 
-SceneDescription Parser::Finish() {
-    if (!pushed_.empty()) {
-        const PushedState &open = pushed_.back();
-        throw SceneError(open.loc, OpenName(open) + " without a matching " +
-                                       (open.kind == 'o' ? "ObjectEnd" : "AttributeEnd"));
-    }
-    for (const auto &[name, loc] : namedMaterialUses_)
-        if (!desc_.namedMaterials.count(name))
-            throw SceneError(loc, "named material \"" + name + "\" is not defined (no MakeNamedMaterial \"" + name + "\")");
-    for (const InstanceUse &use : desc_.instances)
-        if (!desc_.instanceDefinitions.count(use.name))
-            throw SceneError(use.loc, "object \"" + use.name + "\" is not defined (no ObjectBegin \"" + use.name + "\")");
-    if (sawDirective_ && !inWorld_) diag_.Warning(FileLoc{}, "the scene has no WorldBegin");
-    return std::move(desc_);
-}
-
-// Attaches the source line to errors thrown outside a tokenizer (Finish, ply, ...) when the error's
-// file is the in-memory main text.
-SceneDescription Run(Tokenizer &tz, const std::string &path, Diagnostics &diag, const ParseOptions &options) {
-    try {
-        Parser parser(diag, options);
-        parser.ParseTop(tz, path);
-        SceneDescription desc = parser.Finish();
-        desc.filename = path;
-        return desc;
-    } catch (SceneError &e) {
-        if (e.SourceLine().empty() && e.Loc().file == tz.File()) e.SetSourceLine(tz.SourceLine(e.Loc().line));
-        throw;
-    }
-}
-
 }  // namespace
 
-SceneDescription ParseSceneFile(const std::string &filename, Diagnostics &diag, const ParseOptions &options) {
-    std::unique_ptr<Tokenizer> tz = Tokenizer::FromFile(filename, FileLoc{});
-    return Run(*tz, filename, diag, options);
+void ParseFile(ParserTarget &target, const std::string &filename, const ParseOptions &options, ValueBudget &budget) {
+    std::string text;
+    bool corrupt = false;
+    std::string why = ReadSceneText(filename, &text, &corrupt);
+    // A corrupt compressed file is located at the file itself ("scene.pbrt.gz: error: ...").
+    if (corrupt) throw SceneError(FileLoc{std::make_shared<const std::string>(filename), 0, 0}, why);
+    if (!why.empty()) throw SceneError(FileLoc{}, "cannot read scene file \"" + filename + "\": " + why);
+    Tokenizer tz(std::move(text), filename);
+    Parser(target, options, budget).ParseMain(tz, filename);
 }
 
-SceneDescription ParseSceneString(const std::string &text, const std::string &filename, Diagnostics &diag,
-                                  const ParseOptions &options) {
+void ParseString(ParserTarget &target, const std::string &text, const std::string &filename,
+                 const ParseOptions &options, ValueBudget &budget) {
     Tokenizer tz(text, filename);
-    return Run(tz, filename, diag, options);
-}
-
-SceneDescription ParseSceneFile(const std::string &filename, Diagnostics &diag) {
-    return ParseSceneFile(filename, diag, ParseOptions());
-}
-
-SceneDescription ParseSceneString(const std::string &text, const std::string &filename, Diagnostics &diag) {
-    return ParseSceneString(text, filename, diag, ParseOptions());
+    Parser(target, options, budget).ParseMain(tz, filename);
 }
 
 }  // namespace lu

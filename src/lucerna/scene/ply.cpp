@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "lucerna/scene/gzip.h"
 #include "lucerna/scene/tokenizer.h"
 
 namespace lu {
@@ -419,8 +420,10 @@ PlyMesh ReadPlyMeshFromMemory(std::string_view data, const std::string &name, co
 
 PlyMesh ReadPlyMesh(const std::string &path, const FileLoc &referencedFrom, Diagnostics *diag) {
     std::string data;
-    std::string why = ReadFileBytes(path, &data, MaxPlyFileBytes);
-    if (!why.empty()) throw SceneError(referencedFrom, "PLY file \"" + path + "\": cannot open: " + why);
+    bool corrupt = false;
+    std::string why = ReadFileGunzipped(path, &data, MaxPlyFileBytes, &corrupt);
+    if (!why.empty())
+        throw SceneError(referencedFrom, "PLY file \"" + path + "\": " + (corrupt ? "" : "cannot open: ") + why);
     return ReadPlyMeshFromMemory(data, path, referencedFrom, diag);
 }
 

@@ -23,16 +23,17 @@ struct PlyMesh {
     size_t polygonCount = 0;       // faces with more than 4 vertices (fanned, with a warning)
 };
 
-// Reads a PLY file. Errors (missing, truncated, corrupt header, counts exceeding the file size,
-// indices out of range, NaN/Inf values) throw SceneError at referencedFrom with a message that
-// names the file: "PLY file \"PATH\": ...". Warnings (skipped or fanned faces) go to diag if given.
+// Reads a PLY file, gzip-compressed or not (told by its first bytes, whatever its name). Errors
+// (missing, truncated, corrupt header or gzip data, counts exceeding the file size, indices out of
+// range, NaN/Inf values) throw SceneError at referencedFrom with a message that names the file:
+// "PLY file \"PATH\": ...". Warnings (skipped or fanned faces) go to diag if given.
 PlyMesh ReadPlyMesh(const std::string &path, const FileLoc &referencedFrom, Diagnostics *diag = nullptr);
 
-// The same for a PLY file already in memory; `name` is used in messages.
+// The same for a PLY file already in memory (not compressed); `name` is used in messages.
 PlyMesh ReadPlyMeshFromMemory(std::string_view data, const std::string &name, const FileLoc &referencedFrom,
                               Diagnostics *diag = nullptr);
 
-// Upper bound on a PLY file read from disk.
+// Upper bound on a PLY file read from disk (compressed and decompressed).
 constexpr size_t MaxPlyFileBytes = size_t(1) << 32;
 
 }  // namespace lu

@@ -56,21 +56,15 @@ std::string ReadFileBytes(const std::string &path, std::string *contents, size_t
     return "";
 }
 
-Tokenizer::Tokenizer(std::string text, std::string filename)
-    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(filename))) {
+Tokenizer::Tokenizer(std::string text, std::string filename, const FileLoc &includedFrom)
+    : text_(std::move(text)), file_(std::make_shared<const std::string>(std::move(filename))),
+      includedFrom_(includedFrom.file ? std::make_shared<const FileLoc>(includedFrom) : nullptr) {
     const unsigned char *c = (const unsigned char *)text_.data();
     if (text_.size() >= 2 && ((c[0] == 0xfe && c[1] == 0xff) || (c[0] == 0xff && c[1] == 0xfe)))
         Fail(1, 1, "the file is UTF-16 encoded; scene files must be ASCII or UTF-8");
     if (text_.size() >= 2 && c[0] == 0x1f && c[1] == 0x8b)
         Fail(1, 1, "the file is gzip-compressed, which is not supported; decompress it first (gunzip)");
     if (text_.size() >= 3 && c[0] == 0xef && c[1] == 0xbb && c[2] == 0xbf) pos_ = 3;  // UTF-8 BOM
-}
-
-std::unique_ptr<Tokenizer> Tokenizer::FromFile(const std::string &path, const FileLoc &from) {
-    std::string text;
-    std::string why = ReadFileBytes(path, &text, MaxSceneFileBytes);
-    if (!why.empty()) throw SceneError(from, "cannot read scene file \"" + path + "\": " + why);
-    return std::make_unique<Tokenizer>(std::move(text), path);
 }
 
 std::string Tokenizer::SourceLine(int line) const {
@@ -93,7 +87,7 @@ std::string Tokenizer::SourceLine(int line) const {
 }
 
 void Tokenizer::Fail(int line, int col, const std::string &message) const {
-    SceneError e(FileLoc{file_, line, col}, message);
+    SceneError e(FileLoc{file_, line, col, includedFrom_}, message);
     e.SetSourceLine(SourceLine(line));
     throw e;
 }
@@ -128,6 +122,7 @@ bool Tokenizer::Next(Token *tok) {
         tok->line = line_;
         tok->col = col;
         tok->file = &file_;
+        tok->includedFrom = &includedFrom_;
         tok->hasEscapes = false;
         if (c == '[' || c == ']') {
             tok->kind = c == '[' ? Token::OpenBracket : Token::CloseBracket;

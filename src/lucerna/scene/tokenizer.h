@@ -23,8 +23,11 @@ struct Token {
     int line = 0, col = 0;
     bool hasEscapes = false;
     const std::shared_ptr<const std::string> *file = nullptr;  // the tokenizer's file name
+    const std::shared_ptr<const FileLoc> *includedFrom = nullptr;  // the tokenizer's
 
-    FileLoc Loc() const { return FileLoc{file ? *file : nullptr, line, col}; }
+    FileLoc Loc() const {
+        return FileLoc{file ? *file : nullptr, line, col, includedFrom ? *includedFrom : nullptr};
+    }
     bool Is(std::string_view w) const { return kind == Word && raw == w; }
     bool IsString() const { return kind == String; }
     // The text of a String with its escapes decoded (they were validated by the tokenizer);
@@ -38,10 +41,9 @@ std::string ReadFileBytes(const std::string &path, std::string *contents, size_t
 
 class Tokenizer {
   public:
-    // The text is kept by the tokenizer; filename is what FileLocs report.
-    Tokenizer(std::string text, std::string filename);
-    // Reads a file; a failure is a SceneError at `from` (the Include or the command line).
-    static std::unique_ptr<Tokenizer> FromFile(const std::string &path, const FileLoc &from);
+    // The text is kept by the tokenizer; filename is what FileLocs report; includedFrom is the
+    // Include/Import that opened the file (none for the main file), reported with every FileLoc.
+    Tokenizer(std::string text, std::string filename, const FileLoc &includedFrom = FileLoc{});
 
     // Next token, skipping whitespace and comments; false at end of input. Throws SceneError on
     // an unterminated string, a bad escape, a control byte (binary input), an overlong token.
@@ -56,6 +58,7 @@ class Tokenizer {
   private:
     std::string text_;
     std::shared_ptr<const std::string> file_;
+    std::shared_ptr<const FileLoc> includedFrom_;
     size_t pos_ = 0;
     int line_ = 1;
     size_t lineStart_ = 0;  // offset of the first byte of the current line

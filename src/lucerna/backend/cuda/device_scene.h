@@ -34,6 +34,8 @@ class DeviceScene {
     DeviceBuffer<uint32_t> infiniteLights_;
     DeviceBuffer<ImageData> images_;
     DeviceBuffer<Float> texels_;
+    DeviceBuffer<FloatTexture> floatTextures_;
+    DeviceBuffer<SpectrumTexture> spectrumTextures_;
     DeviceBuffer<Distribution2D> distributions2D_;
     DeviceBuffer<Float> distData_;
     DeviceBuffer<Float> spectra_;
