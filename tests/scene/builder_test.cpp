@@ -732,7 +732,9 @@ TEST(Errors, Media) {
          "1 \"sigma_a\" values, but nx*ny*nz = 2*1*1 = 2"},
         {"MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float g\" 1\n", 4, "\"g\" must be in (-1"},
         {"MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n  \"rgb sigma_a\" [ -1 0 0 ]\n", 5, "negative"},
-        {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n", 4, "\"cloud\" is not supported"},
+        {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n  \"float density\" -2\n", 5, "\"density\" must be in [0"},
+        {"MakeNamedMedium \"fog\" \"string type\" \"cloud\" \"float wispiness\" nan\n", 4, "non-finite"},
+        {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n  \"point3 p0\" [ 0 2 0 ]\n", 4, "p0 < p1"},
         {"MakeNamedMedium \"fog\" \"string type\" \"nanovdb\" \"string filename\" \"a.nvdb\"\n", 4, "\"nanovdb\" is not supported"},
         {"MediumInterface \"mist\" \"\"\nShape \"sphere\"\n", 5, "medium \"mist\" is not defined"},
     };

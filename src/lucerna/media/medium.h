@@ -1,11 +1,12 @@
 // Lucerna: participating media (host and device), after pbrt-v4's media.h: the scattering
-// properties at a point (homogeneous, uniform grid, RGB grid), the majorants along a ray (one
-// segment, or a 3D DDA over the 16^3 majorant grid) and SampleTmaj, which samples tentative
+// properties at a point (homogeneous, uniform grid, RGB grid, procedural cloud), the majorants
+// along a ray (one segment, or a 3D DDA over the 16^3 majorant grid) and SampleTmaj, which samples tentative
 // collisions against those majorants (Woodcock / delta tracking). Grids are plain arrays in
 // SceneView::mediumData; the phase function is Henyey-Greenstein (materials/scattering.h).
 #pragma once
 
 #include "lucerna/core/scene_data.h"
+#include "lucerna/materials/noise.h"
 #include "lucerna/materials/scattering.h"
 #include "lucerna/sampling/rng.h"
 #include "lucerna/sampling/warp.h"
@@ -66,6 +67,40 @@ LU_INLINE Float NormalizedBlackbody(Float lambdaNm, Float T) {
     return peak > 0 ? BlackbodyRadiance(lambdaNm, T) / peak : 0;
 }
 
+// ---- pbrt-v4's procedural cloud ----
+
+// pbrt-v4's DNoise: the forward-difference gradient of Noise with step 0.01.
+LU_INLINE Vec3f NoiseGradientFD(const Vec3f &p) {
+    const Float delta = 0.01f;
+    Float n = Noise(p);
+    return Vec3f(Noise(p + Vec3f(delta, 0, 0)) - n, Noise(p + Vec3f(0, delta, 0)) - n,
+                 Noise(p + Vec3f(0, 0, delta)) - n) / delta;
+}
+
+// pbrt-v4's CloudMedium::Density at medium-space point p, in [0, 1]: five octaves of noise at
+// frequency * p (its lookup point perturbed by two octaves of the noise gradient, scaled by the
+// wispiness), thinning with height y and dense below y = 0.5.
+LU_INLINE Float CloudDensity(const Medium &m, const Vec3f &p) {
+    Vec3f pp = p * m.frequency;
+    if (m.wispiness > 0) {
+        Float vOmega = 0.05f * m.wispiness, vLambda = 10;
+        for (int i = 0; i < 2; ++i) {
+            pp += NoiseGradientFD(pp * vLambda) * vOmega;
+            vOmega *= 0.5f;
+            vLambda *= 1.99f;
+        }
+    }
+    Float d = 0, omega = 0.5f, lambda = 1;
+    for (int i = 0; i < 5; ++i) {
+        d += omega * Noise(pp * lambda);
+        omega *= 0.5f;
+        lambda *= 1.99f;
+    }
+    d = Clamp((1 - p.y) * 4.5f * m.cloudDensity * d, Float(0), Float(1));
+    d += 2 * Max(Float(0), 0.5f - p.y);
+    return Clamp(d, Float(0), Float(1));
+}
+
 // ---- Scattering properties at a point ----
 
 struct MediumProperties {
@@ -116,7 +151,12 @@ LU_INLINE MediumProperties SampleMediumPoint(const SceneView &s, const Medium &m
         if (m.emissive) mp.Le = LookupGridSpectrum(s, m.LeGrid, pg, lambda) * m.LeScale;
         return mp;
     }
-    case MediumKind::Cloud: break;   // refused by the builder
+    case MediumKind::Cloud: {
+        Float d = CloudDensity(m, m.renderFromMedium.Inverted().ApplyPoint(p));
+        mp.sigmaA = SampleSpectrum(m.sigmaA, lambda, s.spectra) * (m.sigmaScale * d);
+        mp.sigmaS = SampleSpectrum(m.sigmaS, lambda, s.spectra) * (m.sigmaScale * d);
+        return mp;
+    }
     }
     mp.sigmaA = mp.sigmaS = SampledSpectrum(0);
     return mp;
@@ -183,7 +223,9 @@ LU_INLINE bool IntersectBounds(const Bounds3f &b, const Vec3f &o, const Vec3f &d
     return true;
 }
 
-// The majorants of medium m along ray (unit render-space direction) for t in [0, tMax].
+// The majorants of medium m along ray (unit render-space direction) for t in [0, tMax]: the
+// homogeneous sigma_t over [0, tMax]; the cloud's sigma_t (its density is at most 1) over its
+// bounds, one segment as pbrt-v4; the grids' majorant voxels over their bounds.
 LU_INLINE MajorantIterator MediumMajorants(const SceneView &s, const Medium &m, const Ray &ray, Float tMax,
                                            const SampledWavelengths &lambda) {
     MajorantIterator it;
@@ -200,6 +242,10 @@ LU_INLINE MajorantIterator MediumMajorants(const SceneView &s, const Medium &m, 
     if (!IntersectBounds(m.bounds, o, d, tMax, &t0, &t1)) return it;
     it.tMin = t0;
     it.tMax = t1;
+    if (m.kind == MediumKind::Cloud) {
+        it.sigmaT = (SampleSpectrum(m.sigmaA, lambda, s.spectra) + SampleSpectrum(m.sigmaS, lambda, s.spectra)) * m.sigmaScale;
+        return it;
+    }
     it.sigmaT = m.kind == MediumKind::RGBGrid
                     ? SampledSpectrum(1)
                     : (SampleSpectrum(m.sigmaA, lambda, s.spectra) + SampleSpectrum(m.sigmaS, lambda, s.spectra)) * m.sigmaScale;

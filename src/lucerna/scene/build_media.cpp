@@ -1,5 +1,5 @@
 // Lucerna scene builder: participating media (MakeNamedMedium), after pbrt-v4's media.cpp
-// Create() functions: homogeneous (with the named scattering presets), uniformgrid and rgbgrid,
+// Create() functions: homogeneous (with the named scattering presets), uniformgrid, rgbgrid and cloud,
 // their 16^3 majorant grids, and the camera's medium. Shapes resolve their MediumInterface names
 // with ResolveMedium.
 #include <algorithm>
@@ -358,6 +358,21 @@ void BuildRGBGrid(BuildContext &ctx, const MediumEntity &e, Medium &m) {
     m.majorant = AddMajorantGrid(s, maj);
 }
 
+// pbrt-v4's CloudMedium::Create: density (1), wispiness (1), frequency (5), sigma_a and sigma_s
+// (1), g, p0/p1; no "scale" (pbrt-v4 reads none for the cloud, so it is left unused).
+void BuildCloud(BuildContext &ctx, const MediumEntity &e, Medium &m) {
+    const ParameterDictionary &p = e.params;
+    m.kind = MediumKind::Cloud;
+    m.sigmaA = SpectrumOr(ctx, p, "sigma_a", SpectrumType::Unbounded, 1);
+    m.sigmaS = SpectrumOr(ctx, p, "sigma_s", SpectrumType::Unbounded, 1);
+    m.sigmaScale = 1;
+    m.g = CheckedFloat(e, "g", 0, -1, 1, true, true);
+    m.cloudDensity = CheckedFloat(e, "density", 1, 0, 1e30, false, false);
+    m.wispiness = CheckedFloat(e, "wispiness", 1, 0, 1e30, false, false);
+    m.frequency = CheckedFloat(e, "frequency", 5, 0, 1e30, false, false);
+    Bounds(e, m);
+}
+
 }  // namespace
 
 void BuildMedia(BuildContext &ctx) {
@@ -369,9 +384,7 @@ void BuildMedia(BuildContext &ctx) {
         if (type == "homogeneous") BuildHomogeneous(ctx, e, m);
         else if (type == "uniformgrid") BuildUniformGrid(ctx, e, m);
         else if (type == "rgbgrid") BuildRGBGrid(ctx, e, m);
-        else if (type == "cloud")
-            FailUnsupported(ParamLoc(e.params, "type", e.loc), "medium type \"cloud\"",
-                            "pbrt-v4's procedural cloud is built on its own Perlin-noise tables, which Lucerna does not have");
+        else if (type == "cloud") BuildCloud(ctx, e, m);
         else if (type == "nanovdb")
             FailUnsupported(ParamLoc(e.params, "type", e.loc), "medium type \"nanovdb\"",
                             "reading NanoVDB files is not implemented; convert the grid to a \"uniformgrid\"");
