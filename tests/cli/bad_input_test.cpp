@@ -45,7 +45,7 @@ TEST(BadInput, ResolutionMustBeWxH) {
     for (const char *res : {"32x24junk", "32x", "x24", "32*24", "-32x24", "32x24x2", "0x10", "32 x24", "99999x99999", ""}) {
         ProcessResult r = Render({scene, "--res", res, "-o", dir + "/o.exr"});
         EXPECT_EQ(r.exitCode, 2) << res << "\n" << r.output;
-        if (*res) EXPECT_NE(r.output.find(std::string("--res ") + res + ": expected WxH"), std::string::npos) << r.output;
+        if (*res) { EXPECT_NE(r.output.find(std::string("--res ") + res + ": expected WxH"), std::string::npos) << r.output; }
     }
     EXPECT_FALSE(std::filesystem::exists(dir + "/o.exr"));
     ProcessResult ok = Render({scene, "--res", "12x10", "-o", dir + "/o.exr"});

@@ -70,7 +70,7 @@ TEST(Data, SceneListMatchesTheReadme) {
         if (!s.renders) refused = true;
         EXPECT_FALSE(refused && s.renders) << s.name << " follows a refused scene";
     }
-    EXPECT_EQ(RenderedSharedScenes().size(), 8u);
+    EXPECT_EQ(RenderedSharedScenes().size(), 10u);
     ASSERT_NE(FindSharedScene("cornell-box"), nullptr);
     EXPECT_TRUE(FindSharedScene("cornell-box")->ExactReference());
     EXPECT_EQ(FindSharedScene("no-such-scene"), nullptr);

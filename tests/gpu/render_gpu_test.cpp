@@ -83,6 +83,44 @@ TEST(GpuRender, MatchesCpuOnSharedScenes) {
 #endif
 }
 
+// Participating media on the device: the volumetric caustic with its homogeneous medium and
+// Lucerna's fog scene (point light behind a glass ball), path and regpath, CPU against CUDA in
+// block means over independent seeds (delta tracking, ratio tracking, medium vertices, the
+// media uploaded as plain arrays).
+TEST(GpuRender, MatchesCpuWithMedia) {
+    LU_REQUIRE_GPU();
+#if defined(LUCERNA_HAVE_CUDA)
+    Diagnostics diag;
+    diag.quiet = true;
+    BuildOptions opts;
+    opts.resX = opts.resY = kRes;
+    std::vector<std::string> files = {test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"),
+                                      std::string(LUCERNA_SOURCE_DIR) + "/scenes/media/fog-glass-ball.pbrt"};
+    int tests = int(files.size()) * 2 * (kRes / kBlock) * (kRes / kBlock) * 3;
+    double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
+    for (const std::string &file : files) {
+        SCOPED_TRACE(file);
+        GpuScene gs(LoadScene(file, diag, opts));
+        ASSERT_FALSE(gs.host->media.empty());
+        for (const char *integ : {"path", "regpath"}) {
+            SCOPED_TRACE(integ);
+            std::vector<Image> cpu, gpu;
+            for (int s = 0; s < kSeeds; ++s) {
+                FilmAccumulator fc, fg;
+                RenderCPU(*gs.host, test::SettingsFor(*gs.host, integ, kSpp, 1 + s), fc);
+                RenderCUDA(*gs.dev, gs.host->sampler, test::SettingsFor(*gs.host, integ, kSpp, 101 + s), fg);
+                cpu.push_back(fc.Resolve(gs.host->View().film));
+                gpu.push_back(fg.Resolve(gs.host->View().film));
+                EXPECT_TRUE(test::AllFinite(gpu.back()));
+            }
+            test::BlockComparison r = test::CompareBlockMeans(cpu, gpu, kBlock, z);
+            std::printf("[ cpu/gpu  ] %-52s %-7s %s\n", file.c_str(), integ, r.Summary().c_str());
+            EXPECT_EQ(r.failures, 0) << r.Summary() << " (threshold " << z << ")";
+        }
+    }
+#endif
+}
+
 // Same seed: the device runs the same sample values through the same code and the same BVH
 // traversal as the CPU backend with settings.cpuTracer = BVH, so pixels differ only where last-bit
 // differences (FMA contraction, CUDA's libm) change a path. How much such differences spread is a

@@ -36,6 +36,16 @@ struct AnalyticScene {
 };
 
 std::vector<AnalyticScene> AnalyticScenes() {
+    // A camera at the center of a sphere of radius 1 that emits L = 1 inwards (black, reversed:
+    // its normal points in, so the interior is the MediumInterface's "outside", pbrt-v4's
+    // convention), filled with MEDIUM, in which the camera sits too.
+    auto mediumFurnace = [](const std::string &medium, const std::string &type = "homogeneous") {
+        return "MakeNamedMedium \"fog\" \"string type\" \"" + type + "\" " + medium +
+               "\nMediumInterface \"\" \"fog\"\n" + CameraHeader(24, 90, 64, 400) +
+               "WorldBegin\nAttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\n"
+               "AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nReverseOrientation\nMediumInterface \"\" \"fog\"\n"
+               "Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n";
+    };
     const std::string furnaceCamera =
         "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 40 ]\n"
         "Film \"rgb\" \"integer xresolution\" [ 32 ] \"integer yresolution\" [ 32 ]\nPixelFilter \"box\"\n"
@@ -82,6 +92,25 @@ std::vector<AnalyticScene> AnalyticScenes() {
                          "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] "
                          "\"point3 P\" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ]\n",
          64, 100, 12, 12, 20, 20, 1.0, 0.01},
+        // A scattering medium of albedo 1 inside an emitter of radiance 1 (a furnace): every path
+        // ends on the emitter, so the radiance is 1 everywhere, for any sigma_s(lambda).
+        {"FurnaceScatteringMedium", mediumFurnace("\"rgb sigma_a\" [ 0 0 0 ] \"rgb sigma_s\" [ 1.5 1.5 1.5 ] \"float g\" [ 0.4 ]"),
+         64, 400, 0, 0, 24, 24, 1.0, 0.01},
+        // ... with a chromatic sigma_s: the wavelengths scatter differently (spectral MIS).
+        {"FurnaceChromaticMedium", mediumFurnace("\"rgb sigma_a\" [ 0 0 0 ] \"rgb sigma_s\" [ 0.3 1.2 3 ] \"float g\" [ -0.3 ]"),
+         64, 400, 0, 0, 24, 24, 1.0, 0.01},
+        // ... with pbrt-v4's procedural cloud (null collisions against its sigma_t majorant),
+        // its box larger than the sphere and placed off center.
+        {"FurnaceCloudMedium",
+         mediumFurnace("\"spectrum sigma_a\" [ 360 0 830 0 ] \"rgb sigma_s\" [ 2 3 4 ] \"float g\" 0.5 "
+                       "\"float density\" 2 \"point3 p0\" [ -1.5 -0.8 -1.2 ] \"point3 p1\" [ 1.2 1.4 1.1 ]",
+                       "cloud"),
+         64, 400, 0, 0, 24, 24, 1.0, 0.01},
+        // An absorbing, scattering medium that emits Le = 1 inside the same emitter: absorption
+        // and emission balance (sigma_a Le = sigma_a L), so the radiance is again 1.
+        {"EmittingAbsorbingMedium",
+         mediumFurnace("\"rgb sigma_a\" [ 0.8 0.8 0.8 ] \"rgb sigma_s\" [ 0.7 0.7 0.7 ] \"rgb Le\" [ 1 1 1 ]"),
+         64, 400, 0, 0, 24, 24, 1.0, 0.01},
     };
 }
 

@@ -89,5 +89,32 @@ TEST(Chi2, DetectsWrongPdf) {
     EXPECT_TRUE(Chi2Accepts(r.chi2, 1e-4, NumChi2Tests));
 }
 
+// Henyey-Greenstein phase sampling (media vertices) against its density over the sphere, for
+// back-, iso- and forward scattering, with a wrong-g control that must be rejected.
+TEST(Chi2, HenyeyGreenstein) {
+    Vec3f wo = Normalize(Vec3f(0.3f, -0.5f, 0.8f));
+    auto run = [&](Float gSample, Float gPdf, uint64_t seed) {
+        RNG rng(seed, 5);
+        Chi2Options opts;
+        opts.samples = 200000;
+        return Chi2SampleTest(
+            SphereDomain(20, 40),
+            [&](Chi2Point *p) {
+                Float pdf;
+                Vec3f wi = SampleHenyeyGreenstein(wo, gSample, Vec2f(rng.UniformFloat(), rng.UniformFloat()), &pdf);
+                *p = {wi.x, wi.y, wi.z};
+                return pdf > 0;
+            },
+            [&](const Chi2Point &p) { return double(HenyeyGreenstein(Dot(wo, Vec3f(Float(p.x), Float(p.y), Float(p.z))), gPdf)); },
+            opts);
+    };
+    uint64_t seed = 100;
+    for (Float g : {-0.6f, 0.f, 0.3f, 0.85f}) {
+        SCOPED_TRACE(g);
+        EXPECT_TRUE(Chi2Accepts(run(g, g, ++seed), 1e-4, 4));
+    }
+    EXPECT_TRUE(Chi2Rejects(run(0.3f, 0.36f, 200), 1e-4, 1));
+}
+
 }  // namespace
 }  // namespace lu::test

@@ -16,10 +16,10 @@ const std::vector<SharedScene> &SharedScenes() {
         {"caustic-glass", "scenes/pbrt-v3-caustic-glass/scene-v4.pbrt", "refs/caustic-glass.exr", "sppm", 84, 120, 4096},
         {"bs_c", "scenes/smallvcm-cornell/smallvcm-bs_c.pbrt", "refs/bs_c.exr", "bdpt", 128, 128, 2048},
         {"bs_p", "scenes/smallvcm-cornell/smallvcm-bs_p.pbrt", "refs/bs_p.exr", "sppm", 128, 128, 4096},
-        // With participating media, which Lucerna refuses (naming MakeNamedMedium / MediumInterface).
+        // With participating media.
         {"volumetric-caustic-medium", "scenes/bitterli-volumetric-caustic/scene-v4.pbrt",
-         "refs/volumetric-caustic-medium.exr", "bdpt", 96, 96, 1024, false},
-        {"scene-v4.gonsolo", "scenes/bitterli-volumetric-caustic/scene-v4.gonsolo.pbrt", "", "", 0, 0, 0, false},
+         "refs/volumetric-caustic-medium.exr", "bdpt", 96, 96, 1024},
+        {"scene-v4.gonsolo", "scenes/bitterli-volumetric-caustic/scene-v4.gonsolo.pbrt", "", "", 0, 0, 0},
     };
     return scenes;
 }

@@ -158,6 +158,11 @@ struct Shape {
     uint32_t material = NoIndex;   // NoIndex: interface (no surface, rays pass through)
     uint32_t areaLight = NoIndex;  // first light index; primitive i of the shape has light areaLight + i
     uint32_t primitiveCount = 1;   // triangles of a mesh, 1 for analytic shapes
+    // pbrt-v4's MediumInterface: a ray leaving the surface along w enters outsideMedium when
+    // Dot(w, n) > 0 (n: the oriented geometric normal), else insideMedium (NoIndex: vacuum).
+    // Without a transition (no MediumInterface, or inside == outside) a ray keeps its medium.
+    bool mediumTransition = false;
+    uint32_t insideMedium = NoIndex, outsideMedium = NoIndex;
 };
 
 // ---- Lights ----
@@ -192,6 +197,40 @@ struct Distribution2D {
     Float integral = 0;
 };
 
+// ---- Participating media (pbrt-v4's media.h) ----
+
+enum class MediumKind : uint8_t { Homogeneous, UniformGrid, RGBGrid, Cloud };
+
+// A grid of samples over the medium's bounds (pbrt-v4's SampledGrid: sample (x, y, z) sits at
+// ((x + 0.5) / nx, ...) of the bounds, trilinear in between, 0 outside): `channels` floats per
+// sample at SceneView::mediumData[offset + ((z * ny + y) * nx + x) * channels]. Float grids have
+// 1 channel; spectrum grids 4: the sigmoid coefficients and scale of an RGB spectrum.
+struct MediumGrid {
+    uint32_t nx = 0, ny = 0, nz = 0, channels = 1;
+    uint64_t offset = 0;
+    SpectrumKind kind = SpectrumKind::RGBUnbounded;   // spectrum grids: Unbounded or Illuminant (D65)
+};
+
+struct Medium {
+    MediumKind kind = MediumKind::Homogeneous;
+    Float g = 0;                      // Henyey-Greenstein asymmetry
+    // homogeneous, uniformgrid, cloud: sigma_{a,s}(lambda) = sigmaScale * spectrum (* density)
+    Spectrum sigmaA, sigmaS;
+    Float sigmaScale = 1;
+    Spectrum Le;                      // homogeneous, uniformgrid (illuminant; scale folded into LeScale)
+    Float LeScale = 0;                // homogeneous: constant; uniformgrid: times the Lescale grid
+    bool emissive = false;
+    Transform renderFromMedium;       // grids and cloud
+    Bounds3f bounds;                  // medium space (p0, p1)
+    MediumGrid density;               // uniformgrid: density; rgbgrid: sigma_a (channels 0 if absent)
+    MediumGrid density2;              // rgbgrid: sigma_s
+    MediumGrid LeGrid;                // uniformgrid: Lescale grid (1 sample if constant); rgbgrid: Le
+    MediumGrid temperature;           // uniformgrid (nx == 0: none): Le = blackbody((T - offset) * scale)
+    Float temperatureScale = 1, temperatureOffset = 0;
+    MediumGrid majorant;              // 16^3 maximum density (or sigma_t for rgbgrid) over the bounds
+    Float cloudDensity = 1, wispiness = 1, frequency = 5;   // cloud
+};
+
 // ---- Camera and film ----
 
 // pbrt-v4's cameras (all but "realistic"); spherical with its two image mappings.
@@ -203,6 +242,7 @@ struct CameraData {
     Transform cameraFromRaster;   // perspective, orthographic (unused by spherical)
     Float lensRadius = 0, focalDistance = 1e6f;
     int width = 0, height = 0;    // full film resolution (pixels)
+    uint32_t medium = NoIndex;    // the medium camera rays start in (CameraBegin's outside medium)
 };
 
 enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell };
@@ -248,6 +288,11 @@ struct SceneView {
     Span<Float> rgbToSpecCoeffs, rgbToSpecZNodes;
     uint32_t rgbToSpecRes = 0;
     uint32_t illuminantTable = 0;   // the color space's standard illuminant (D65), in spectra
+    Span<Medium> media;
+    Span<Float> mediumData;         // the grids of the media (MediumGrid)
+    // Shadow rays must walk through interface surfaces (the scene has media or "interface"
+    // shapes); false: a shadow ray is one occlusion query.
+    bool walkInterfaces = false;
     uint32_t transmitters = 0;      // materials that can transmit light (dielectric, thindielectric)
     CameraData camera;
     FilmData film;

@@ -48,6 +48,31 @@ LU_INLINE Float RegularizedHitWeight(Float pdfConeW, Float pdfLightW) {
 // Manifold NEE (explicit, unbiased) against BSDF sampling of the same refractive chain, both in
 // area measure at the light point: pdfA is the technique's own, pdfOtherA the other's.
 LU_INLINE Float MneeWeight(Float pdfA, Float pdfOtherA) { return PowerHeuristic(pdfA, pdfOtherA); }
+// ---- Through media: the wavelengths as techniques (pbrt-v4's VolPathIntegrator) ----
+
+// pbrt-v4's rescaled path probabilities r_u, r_l: per wavelength, the probability density of the
+// path so far relative to the one it was sampled with at the hero wavelength (lambda[0]), under
+// unidirectional sampling (u) and, for its last segment, under the explicit technique of the
+// vertex it left (l: light sampling, whose transmittance is estimated by ratio tracking). Chromatic
+// media make them differ between wavelengths, null collisions between u and l. Paths that never
+// entered a medium keep them 1 and are weighted by the scalar functions above.
+struct WavelengthPdfs {
+    SampledSpectrum u = SampledSpectrum(1), l = SampledSpectrum(1);
+};
+
+// The wavelength part of the weight of technique t for a path it sampled at the hero wavelength,
+// against technique o: pT = rT * pdfT and pO = rO * pdfO per wavelength (pdfO = 0: no second
+// technique; pdfT = Infinity: a delta light, no second technique). The balance heuristic over the
+// wavelengths (a one-sample choice: Veach 1997, 9.2.4), to be multiplied by the technique weight
+// at the hero wavelength; these products add up to 1 over all techniques and wavelengths. 1 once
+// the secondary wavelengths are terminated (only the hero remains).
+LU_INLINE Float WavelengthWeight(const SampledSpectrum &rT, Float pdfT, const SampledSpectrum &rO, Float pdfO,
+                                 const SampledWavelengths &lambda) {
+    if (lambda.SecondaryTerminated()) return 1;
+    SampledSpectrum q = (pdfO > 0 && pdfT != Infinity) ? rT * pdfT + rO * pdfO : rT;
+    Float avg = q.Average();
+    return avg > 0 ? q[0] / avg : 0;
+}
 
 // ---- The light pick of the explicit techniques ----
 

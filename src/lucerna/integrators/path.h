@@ -9,10 +9,28 @@
 #include "lucerna/film/film_sample.h"
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/integrators/techniques.h"
+#include "lucerna/integrators/volume.h"
 
 namespace lu {
 
-// Radiance along a camera ray (pbrt-v4 PathIntegrator::Li with the regularized technique).
+// The phase-function sampling of a medium vertex at p (wo towards the previous vertex): the next
+// ray and the record of this vertex; the phase function samples itself exactly (beta unchanged).
+LU_INLINE void SamplePhaseDirection(const Vec3f &p, const Vec3f &wo, Float g, Sampler &sampler, ScatterVertex &v,
+                                    Ray &ray) {
+    Float pdf;
+    Vec3f wi = SampleHenyeyGreenstein(wo, g, sampler.Get2D(), &pdf);
+    v.ctx = LightSampleContext();
+    v.ctx.p = p;
+    v.pdfBsdfW = pdf;
+    v.camera = v.specular = v.regularized = v.allSpecular = false;
+    ray.o = p;
+    ray.d = wi;
+    ray.tMax = Infinity;
+}
+
+// Radiance along a camera ray (pbrt-v4 PathIntegrator::Li with the regularized technique; in
+// media pbrt-v4's VolPathIntegrator::Li: delta tracking, medium vertices with NEE and phase
+// sampling, and the wavelengths weighted as techniques once the path has entered a medium).
 template <typename Tracer>
 LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                          const Tracer &tracer, const PathSettings &ps, PathStats &st, int *terminalDepth = nullptr) {
@@ -20,10 +38,41 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
     int depth = 0;
     Float etaScale = 1;
     ScatterVertex prev;   // the vertex the current ray left from (camera at first)
+    uint32_t medium = scene.camera.medium;   // the medium the current ray travels in
+    WavelengthPdfs r;                        // used once the path has entered a medium
+    bool inMedia = false;
     for (int guard = 0; guard < 1024; ++guard) {
         HitRecord hit;
         ++st.rays;
         bool found = tracer.Intersect(ray, &hit);
+        // ---- The medium along the ray ----
+        if (medium != NoIndex) {
+            inMedia = true;
+            Vec3f pScatter;
+            MediumEvent ev = SampleMediumSegment(scene, medium, ray, found ? hit.t : Infinity, lambda, sampler, depth,
+                                                 ps.maxDepth, beta, r, L, &pScatter);
+            if (ev == MediumEvent::Terminated) break;
+            if (ev == MediumEvent::Scattered) {
+                ++depth;
+                Vec3f wo = -Normalize(ray.d);
+                Float g = scene.media[medium].g;
+                LightSampleContext ctx;
+                ctx.p = pScatter;
+                VertexMedia vm;
+                vm.medium = medium;
+                vm.r = &r;
+                if (ps.strategy != LightStrategy::BSDFOnly)
+                    L += beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st, ps.strategy);
+                SamplePhaseDirection(pScatter, wo, g, sampler, prev, ray);
+                r.l = r.u;
+                if (!beta.IsFinite()) {
+                    st.invalid = true;
+                    break;
+                }
+                continue;
+            }
+        }
+        const WavelengthPdfs *rPath = inMedia ? &r : nullptr;
         // ---- Emitters the ray reaches ----
         if (!found) {
             for (uint32_t k = 0; k < scene.infiniteLights.size; ++k) {
@@ -31,18 +80,21 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 SampledSpectrum Le = InfiniteLightLe(scene.lights[li], scene, Normalize(ray.d), lambda);
                 if (Le.IsBlack()) continue;
                 Vec3f wi = Normalize(ray.d);
-                L += beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps, lambda, tracer);
+                L += beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps, rPath, lambda, tracer);
             }
             break;
         }
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
         if (si.areaLight != NoIndex) {
             SampledSpectrum Le = AreaLightL(scene.lights[si.areaLight], scene, si.p, si.n, si.uv, si.wo, lambda);
-            if (!Le.IsBlack()) L += beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, lambda, tracer);
+            if (!Le.IsBlack())
+                L += beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, rPath, lambda, tracer);
         }
+        const Shape &shape = scene.shapes[si.shape];
         BSDF bsdf;
         if (si.material == NoIndex || !MakeBSDF(scene.materials[si.material], si, lambda, scene, &bsdf)) {
             // Interface: continue the ray past the surface, same depth (pbrt-v4 SkipIntersection).
+            if (scene.walkInterfaces) medium = MediumAfter(shape, si.n, ray.d, medium);
             ray.o = OffsetRayOrigin(si.p, si.n, ray.d);
             continue;
         }
@@ -50,8 +102,13 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- Explicit techniques at this vertex ----
         bool specular = bsdf.IsSpecular();
         ScatterVertex here = prev;   // becomes this vertex's record (SampleDirect, SampleBSDFDirection)
+        VertexMedia vm;
+        vm.medium = medium;
+        vm.shape = &shape;
+        vm.n = si.n;
+        vm.r = rPath;
         SampledSpectrum Ld;
-        DirectTechnique t = SampleDirect(si, bsdf, specular, prev, depth, lambda, sampler, scene, tracer, ps, st, &Ld, &here);
+        DirectTechnique t = SampleDirect(si, bsdf, specular, prev, depth, vm, lambda, sampler, scene, tracer, ps, st, &Ld, &here);
         if (t != DirectTechnique::None) {
             SampledSpectrum c = beta * Ld;
             if (t == DirectTechnique::Regularized) st.regEnergy += c.Average();
@@ -60,8 +117,13 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- BSDF sampling ----
         if (!SampleBSDFDirection(si, bsdf, sampler, beta, etaScale, here, ray)) break;
         prev = here;
+        if (scene.walkInterfaces) {
+            medium = MediumAfter(shape, si.n, ray.d, medium);
+            r.l = r.u;
+        }
         // Russian roulette (pbrt-v4): after the first bounce, when the throughput is small.
         SampledSpectrum rrBeta = beta * etaScale;
+        if (inMedia) rrBeta /= r.u.Average();
         if (rrBeta.MaxValue() < 1 && depth > 1) {
             Float q = Max(Float(0), 1 - rrBeta.MaxValue());
             if (sampler.Get1D() < q) break;

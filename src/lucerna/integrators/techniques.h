@@ -2,7 +2,9 @@
 // TraceBase): next-event estimation at non-specular vertices, the regularized connection at
 // specular vertices, BSDF sampling of the next direction, and the weight of an emitter that BSDF
 // sampling hits. Their MIS weights come from integrators/mis.h. A new technique goes here: its
-// function, its call in SampleDirect, and its pdf in EmitterHitWeight.
+// function, its call in SampleDirect, and its pdf in EmitterHitWeight. A vertex is a surface
+// point (its BSDF) or a medium scattering point (its phase function); the media a shadow ray
+// crosses are estimated by integrators/volume.h.
 // Backends supply a Tracer with  bool Intersect(const Ray &, HitRecord *) const;  bool Occluded(const Ray &) const;
 #pragma once
 
@@ -10,6 +12,7 @@
 #include "lucerna/integrators/mis.h"
 #include "lucerna/integrators/mnee.h"
 #include "lucerna/integrators/stats.h"
+#include "lucerna/integrators/volume.h"
 #include "lucerna/materials/bsdf.h"
 #include "lucerna/sampling/sampler.h"
 
@@ -24,7 +27,10 @@ struct PathSettings {
 };
 
 // MNEE applies in this scene: the setting is on and some material can refract or pass light.
-LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) { return ps.mnee && scene.transmitters > 0; }
+// Not in scenes with media: MNEE's chains carry no transmittance of the media they cross (yet).
+LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) {
+    return ps.mnee && scene.transmitters > 0 && scene.media.size == 0;
+}
 
 // Shadow ray from p (offset along n towards the light) to the point pLight (or to infinity along wi).
 LU_INLINE Ray SpawnShadowRay(const Vec3f &p, const Vec3f &n, const Vec3f &wi, Float distance, const Vec3f &pLight) {
@@ -49,7 +55,56 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
     return ctx;
 }
 
-// ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd) ----
+// ---- Vertices: what scatters there, and which media they touch ----
+
+// The scattering function at a surface vertex: the BSDF times |cos| at the shading normal.
+struct SurfaceScatter {
+    const BSDF &bsdf;
+    Vec3f ns;
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return bsdf.f(wo, wi) * AbsDot(wi, ns); }
+    LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return bsdf.PDF(wo, wi); }
+};
+
+// The scattering function at a medium vertex: the Henyey-Greenstein phase function (sigma_s is
+// in the path throughput), which its sampling reproduces exactly.
+struct PhaseScatter {
+    Float g = 0;
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return SampledSpectrum(HenyeyGreenstein(Dot(wo, wi), g)); }
+    LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return HenyeyGreenstein(Dot(wo, wi), g); }
+};
+
+// The media at a vertex: the medium the path arrived in, the interface of a surface vertex, and
+// the path's per-wavelength probabilities (nullptr: the path has not entered a medium).
+struct VertexMedia {
+    uint32_t medium = NoIndex;
+    const Shape *shape = nullptr;   // surface vertices
+    Vec3f n;                        // surface vertices: the oriented geometric normal
+    const WavelengthPdfs *r = nullptr;
+    // The medium a ray leaving the vertex along w starts in.
+    LU_HD uint32_t Toward(const Vec3f &w) const { return shape ? MediumAfter(*shape, n, w, medium) : medium; }
+};
+
+// The visibility of a light sample: one occlusion query in scenes without media or interfaces,
+// else the transmittance through them (TraceTransmittance). *tr stays 1 when nothing was crossed.
+template <typename Tracer>
+LU_HD bool ShadowRayVisible(const SceneView &scene, const Tracer &tracer, const Ray &shadow, const VertexMedia &vm,
+                            const Vec3f &wi, const SampledWavelengths &lambda, PathStats &st, ShadowTransmittance *tr) {
+    ++st.rays; ++st.shadowRays;
+    if (!scene.walkInterfaces) return !tracer.Occluded(shadow);
+    return TraceTransmittance(scene, tracer, shadow, vm.Toward(wi), lambda, st, tr);
+}
+
+// The per-wavelength probabilities of a light sample's path under the explicit technique (*rL)
+// and under the implicit one (*rU), from the path's and the shadow ray's (pbrt-v4's SampleLd);
+// false when neither the path nor the shadow ray went through a medium (scalar weights apply).
+LU_INLINE bool LightSamplePdfs(const VertexMedia &vm, const ShadowTransmittance &tr, SampledSpectrum *rL,
+                               SampledSpectrum *rU) {
+    if (!vm.r && !tr.throughMedium) return false;
+    SampledSpectrum prefix = vm.r ? vm.r->u : SampledSpectrum(1);
+    *rL = prefix * tr.sL;
+    *rU = prefix * tr.sU;
+    return true;
+}
 
 // ---- Manifold next-event estimation (integrators/mnee.h) ----
 
@@ -60,8 +115,9 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
 // Newton's method finds it. Weighted against BSDF sampling of the same chain (area lights; the
 // power heuristic in area measure at the light point); the only technique for point and spot
 // lights. The regularized connection leaves these paths to MNEE (see SampleRegularized).
-template <typename Tracer>
-LU_HD SampledSpectrum SampleMnee(const SurfaceInteraction &si, const BSDF &bsdf, const LightPick &pick,
+// ctx, wo, sc: the vertex as SampleLd has it (a surface: MNEE does not start in media).
+template <typename Tracer, typename Scatter>
+LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const LightPick &pick,
                                  const Light &light, const LightLiSample &ls, const SampledWavelengths &lambda,
                                  const SceneView &scene, const Tracer &tracer, LightStrategy strategy, int budget,
                                  PathStats &st) {
@@ -70,15 +126,15 @@ LU_HD SampledSpectrum SampleMnee(const SurfaceInteraction &si, const BSDF &bsdf,
     if (!delta && light.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
     MneeChain ch;
     MneeThroughput tp;
-    if (!FindMneeChain(scene, tracer, si.p, si.n, ls.pLight, ls.nLight, lambda, &ch, &tp)) return SampledSpectrum(0);
+    if (!FindMneeChain(scene, tracer, ctx.p, ctx.n, ls.pLight, ls.nLight, lambda, &ch, &tp)) return SampledSpectrum(0);
     if (ch.k + tp.passThrough > budget) return SampledSpectrum(0);   // longer than maxdepth allows
-    Vec3f w0 = Normalize((ch.k ? ch.v[0].p : ch.y) - si.p);
-    Vec3f wy = Normalize((ch.k ? ch.v[ch.k - 1].p : si.p) - ch.y);   // from the light towards the chain
-    SampledSpectrum f = bsdf.f(si.wo, w0) * AbsDot(w0, si.ns);
+    Vec3f w0 = Normalize((ch.k ? ch.v[0].p : ch.y) - ctx.p);
+    Vec3f wy = Normalize((ch.k ? ch.v[ch.k - 1].p : ctx.p) - ch.y);   // from the light towards the chain
+    SampledSpectrum f = sc.f(wo, w0);
     if (f.IsBlack()) return SampledSpectrum(0);
     SampledSpectrum c;
     if (delta) {   // E = I |d omega_y / dA_x0| per unit area of the surface at x0
-        Float cosG = AbsDot(w0, si.n), G = MneeGeometry(ch, false);
+        Float cosG = AbsDot(w0, ctx.n), G = MneeGeometry(ch, false);
         if (!(cosG > 0) || !(G > 0)) return SampledSpectrum(0);
         c = f * tp.weight * PointLightIntensity(light, scene, wy, lambda) * (G / (cosG * pick.pmf));
     } else {
@@ -86,38 +142,60 @@ LU_HD SampledSpectrum SampleMnee(const SurfaceInteraction &si, const BSDF &bsdf,
         Float pdfLightA = pick.pmf * ls.pdf * AbsDot(ls.nLight, ls.wi) / Sqr(ls.distance);
         if (!(pdfLightA > 0) || !(G > 0)) return SampledSpectrum(0);
         Float w = 1;
-        if (strategy == LightStrategy::MIS) w = MneeWeight(pdfLightA, bsdf.PDF(si.wo, w0) * tp.lobePdf * G);
+        if (strategy == LightStrategy::MIS) w = MneeWeight(pdfLightA, sc.PDF(wo, w0) * tp.lobePdf * G);
         c = f * tp.weight * AreaLightL(light, scene, ch.y, ch.nY, Vec2f(0, 0), wy, lambda) * (G * w / pdfLightA);
     }
     if (!c.IsBlack()) ++st.mneeConnections;
     return c;
 }
 
-// One light sample at a non-specular vertex, MIS-weighted against BSDF sampling; through a
-// blocking refractive chain of at most mneeBudget vertices by MNEE (0: none).
-template <typename Tracer>
-LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const SampledWavelengths &lambda,
-                               Sampler &sampler, const SceneView &scene, const Tracer &tracer, PathStats &st,
-                               LightStrategy strategy = LightStrategy::MIS, int mneeBudget = 0) {
+// ---- Next-event estimation (pbrt-v4 PathIntegrator::SampleLd and VolPathIntegrator::SampleLd) ----
+
+// One light sample at a non-specular vertex (ctx, outgoing direction wo, scattering function sc:
+// SurfaceScatter or PhaseScatter), MIS-weighted against sampling sc, through the media in vm;
+// through a blocking refractive chain of at most mneeBudget vertices by MNEE (0: none).
+template <typename Tracer, typename Scatter>
+LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
+                               const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                               const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
+                               int mneeBudget = 0) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, AllowIncompletePDF(strategy), &ls))
-        return SampledSpectrum(0);
-    SampledSpectrum f = bsdf.f(si.wo, ls.wi) * AbsDot(ls.wi, si.ns);
+    if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls)) return SampledSpectrum(0);
+    SampledSpectrum f = sc.f(wo, ls.wi);
     if (f.IsBlack()) return SampledSpectrum(0);
-    Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
-    ++st.rays; ++st.shadowRays;
-    if (tracer.Occluded(shadow))
-        return mneeBudget > 0 ? SampleMnee(si, bsdf, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
+    Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
+    ShadowTransmittance tr;
+    if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr))
+        return mneeBudget > 0 ? SampleMnee(ctx, wo, sc, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
                               : SampledSpectrum(0);
     Float pdfLightW = pick.pmf * ls.pdf;
-    if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
-    Float pdfBsdfW = bsdf.PDF(si.wo, ls.wi);
-    return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+    SampledSpectrum rL, rU;
+    if (!LightSamplePdfs(vm, tr, &rL, &rU)) {
+        if (ls.isDelta || strategy == LightStrategy::NEEOnly) return f * ls.L / pdfLightW;
+        Float pdfBsdfW = sc.PDF(wo, ls.wi);
+        return f * ls.L * (LightSampleWeight(pdfLightW, pdfBsdfW) / pdfLightW);
+    }
+    f *= tr.T;
+    if (ls.isDelta || strategy == LightStrategy::NEEOnly)
+        return f * ls.L * (WavelengthWeight(rL, pdfLightW, rU, 0, lambda) / pdfLightW);
+    Float pdfBsdfW = sc.PDF(wo, ls.wi);
+    Float w = LightSampleWeight(pdfLightW, rU[0] * pdfBsdfW) * WavelengthWeight(rL, pdfLightW, rU, pdfBsdfW, lambda);
+    return f * ls.L * (w / pdfLightW);
+}
+
+// NEE at a surface vertex.
+template <typename Tracer>
+LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
+                               const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                               const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
+                               int mneeBudget = 0) {
+    return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda, sampler, scene, tracer, st,
+                    strategy, mneeBudget);
 }
 
 // ---- The vertex record for MIS ----
@@ -208,9 +286,9 @@ LU_INLINE LightPick PickRegularizedCandidate(const SceneView &scene, Vec3f p, co
 template <typename Tracer>
 LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SpecularLobe *lobes,
                                         int n, Float candidatePmf, bool deltaOnly, const ScatterVertex &in,
-                                        bool mnee, const SampledWavelengths &lambda, Sampler &sampler,
-                                        const SceneView &scene, const Tracer &tracer, const RegularizationParams &rp,
-                                        LightStrategy strategy, PathStats &st) {
+                                        bool mnee, const VertexMedia &vm, const SampledWavelengths &lambda,
+                                        Sampler &sampler, const SceneView &scene, const Tracer &tracer,
+                                        const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     bool allowIncomplete = AllowIncompletePDF(strategy);
@@ -225,6 +303,7 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
     // f_reg |cos| / p = weight * phi / pdf per lobe; for delta lights the "pdf" is the pmf alone.
     SampledSpectrum sum(0);
+    bool inCone[2] = {false, false};
     int covered = -1;   // MNEE's verdict on the transmission lobe, computed once when needed
     for (int i = 0; i < n; ++i) {
         if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
@@ -238,12 +317,26 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
             }
             if (covered) continue;
         }
+        inCone[i] = true;
         sum += lobes[i].weight * RegularizedConnectionWeight(lobes[i].pdf * pdfConeW, pdfLightW);
     }
     if (sum.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(si.p, si.n, ls.wi, ls.distance, ls.pLight);
-    ++st.rays; ++st.shadowRays;
-    if (tracer.Occluded(shadow)) return SampledSpectrum(0);
+    ShadowTransmittance tr;
+    if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr)) return SampledSpectrum(0);
+    SampledSpectrum rL, rU;
+    if (LightSamplePdfs(vm, tr, &rL, &rU)) {
+        // Through media: the lobes' weights from the per-wavelength probabilities, and the
+        // transmittance of the connection.
+        sum = SampledSpectrum(0);
+        for (int i = 0; i < n; ++i) {
+            if (!inCone[i]) continue;
+            Float pdfImplicitW = lobes[i].pdf * pdfConeW;
+            sum += lobes[i].weight * (RegularizedConnectionWeight(rU[0] * pdfImplicitW, pdfLightW) *
+                                      WavelengthWeight(rL, pdfLightW, rU, pdfImplicitW, lambda));
+        }
+        sum *= tr.T;
+    }
     Float pSample = pick.pmf * ls.pdf;
     SampledSpectrum c = sum * ls.L * (pdfConeW / pSample);
     ++st.regConnections;
@@ -261,12 +354,13 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
 enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
 template <typename Tracer>
 LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
-                        int depth, const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
-                        const Tracer &tracer, const PathSettings &ps, PathStats &st, SampledSpectrum *Ld,
-                        ScatterVertex *out) {
+                                   int depth, const VertexMedia &vm, const SampledWavelengths &lambda,
+                                   Sampler &sampler, const SceneView &scene, const Tracer &tracer,
+                                   const PathSettings &ps, PathStats &st, SampledSpectrum *Ld, ScatterVertex *out) {
     out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
-        *Ld = SampleLd(si, bsdf, lambda, sampler, scene, tracer, st, ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0);
+        *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy,
+                       UsesMnee(ps, scene) ? ps.maxDepth - depth : 0);
         return DirectTechnique::LightSample;
     }
     if (!ps.reg.enabled) return DirectTechnique::None;
@@ -277,8 +371,8 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     bool deltaOnly = in.allSpecular;
     Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, ps.reg.radius, deltaOnly, AllowIncompletePDF(ps.strategy));
     if (!(total > 0)) return DirectTechnique::None;
-    *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, UsesMnee(ps, scene), lambda, sampler, scene, tracer,
-                            ps.reg, ps.strategy, st);
+    *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, UsesMnee(ps, scene), vm, lambda, sampler, scene,
+                            tracer, ps.reg, ps.strategy, st);
     out->regularized = !deltaOnly;
     out->candidatePmf = total;
     return DirectTechnique::Regularized;
@@ -286,15 +380,36 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
 
 // ---- BSDF sampling, and the emitters it hits ----
 
+// EmitterHitWeight for a path that went through media: the technique weights at the hero
+// wavelength from the per-wavelength probabilities (r.u[0] == 1), times the wavelength weight.
+LU_INLINE Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi,
+                                        Vec3f pLight, Vec3f nLight, bool atInfinity, const PathSettings &ps,
+                                        const WavelengthPdfs &r, const SampledWavelengths &lambda) {
+    if (v.camera || (v.specular && !v.regularized)) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
+    Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
+    if (v.specular) {
+        pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
+        Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
+        Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d));   // lobe-aware
+        return RegularizedHitWeight(pdfConeW, r.l[0] * pdfLightW) * WavelengthWeight(r.u, pdfConeW, r.l, pdfLightW, lambda);
+    }
+    if (ps.strategy == LightStrategy::NEEOnly) return 0;
+    if (ps.strategy == LightStrategy::BSDFOnly) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
+    return BSDFHitWeight(ps.strategy, v.pdfBsdfW, r.l[0] * pdfLightW) *
+           WavelengthWeight(r.u, v.pdfBsdfW, r.l, pdfLightW, lambda);
+}
+
 // MIS weight of emitter `li` hit along wi at pLight (normal nLight) from vertex v, against the
 // explicit technique that could have sampled it there. Infinite lights: pLight = v.ctx.p + wi,
-// nLight = -wi, atInfinity = true. After a chain of smooth transmissions from a non-specular
+// nLight = -wi, atInfinity = true. r: the path's per-wavelength probabilities when it went
+// through a medium (nullptr: scalar weights). After a chain of smooth transmissions from a non-specular
 // vertex, MNEE is that technique where it finds this very chain to pLight (it re-runs MNEE's
 // deterministic solve: the partner of SampleMnee's weight); elsewhere the regularized connection.
 template <typename Tracer>
 LU_HD Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
-                             Vec3f nLight, bool atInfinity, const PathSettings &ps, const SampledWavelengths &lambda,
-                             const Tracer &tracer) {
+                             Vec3f nLight, bool atInfinity, const PathSettings &ps, const WavelengthPdfs *r,
+                             const SampledWavelengths &lambda, const Tracer &tracer) {
+    if (r) return EmitterHitWeightInMedia(v, scene, li, wi, pLight, nLight, atInfinity, ps, *r, lambda);
     if (v.camera) return 1;
     if (v.specular && v.chainVertices >= 0 && !atInfinity && UsesMnee(ps, scene) && ps.strategy != LightStrategy::BSDFOnly &&
         scene.lights[li].kind == LightKind::DiffuseArea) {

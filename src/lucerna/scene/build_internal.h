@@ -130,6 +130,9 @@ struct BuildContext {
     std::map<std::string, std::string> namedMaterialTypes;
     uint32_t defaultMaterial = NoIndex;  // diffuse 0.5, created on first use
 
+    // Media by name -> scene.media index.
+    std::map<std::string, uint32_t> media;
+
     // Area light entities already interpreted (ReportUnused once each).
     std::map<int, AreaLightParams> areaLights;
 
@@ -184,6 +187,13 @@ std::string ResolveScenePath(BuildContext &ctx, const std::string &entityDirecto
 // negative radiance (negative roughness or thickness, eta <= 0, |g| > 1, nsamples < 1).
 void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
                          const FileLoc &loc, const std::string &owner);
+
+// ---- build_media.cpp ----
+
+// MakeNamedMedium entities -> scene.media (and the camera's medium).
+void BuildMedia(BuildContext &ctx);
+// A MediumInterface name -> scene.media index (NoIndex for ""); SceneError at loc if undefined.
+uint32_t ResolveMedium(BuildContext &ctx, const std::string &name, const FileLoc &loc);
 
 // ---- build_shapes.cpp ----
 

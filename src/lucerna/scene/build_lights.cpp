@@ -157,8 +157,8 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
 void BuildLights(BuildContext &ctx) {
     HostScene &s = ctx.scene;
     for (const LightEntity &e : ctx.desc.lights) ctx.Collect([&] {
-        if (!e.outsideMedium.empty())
-            FailUnsupported(e.loc, "MediumInterface " + Quoted(e.outsideMedium) + " for a light (participating media)");
+        // The light's medium matters only to light paths (pbrt-v4's bdpt); checked, not used.
+        (void)ResolveMedium(ctx, e.outsideMedium, e.loc);
         const ParameterDictionary &p = e.params;
         const Transform &ctm = e.renderFromObject;
         const std::string owner = "LightSource " + Quoted(e.name);

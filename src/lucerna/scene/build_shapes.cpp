@@ -385,10 +385,16 @@ void CheckTransform(Placement &pl, const FileLoc &loc) {
     pl.singular = !IsFiniteMatrix(pl.renderFromObject.mInv);
 }
 
-void CheckMedia(const ShapeEntity &sh) {
-    if (!sh.insideMedium.empty() || !sh.outsideMedium.empty())
-        FailUnsupported(sh.loc, "MediumInterface " + Quoted(sh.insideMedium) + " " + Quoted(sh.outsideMedium) +
-                                    " (participating media)");
+// pbrt-v4's MediumInterface of a shape: a transition only when inside and outside differ.
+void SetMedia(BuildContext &ctx, const ShapeEntity &sh, size_t firstShape) {
+    uint32_t inside = ResolveMedium(ctx, sh.insideMedium, sh.loc), outside = ResolveMedium(ctx, sh.outsideMedium, sh.loc);
+    if (inside == outside) return;
+    for (size_t i = firstShape; i < ctx.scene.shapes.size(); ++i) {
+        Shape &s = ctx.scene.shapes[i];
+        s.mediumTransition = true;
+        s.insideMedium = inside;
+        s.outsideMedium = outside;
+    }
 }
 
 // Builds one Shape directive at its placement; returns false for unknown names (reported by caller).
@@ -418,7 +424,7 @@ void BuildShapes(BuildContext &ctx) {
     const SceneDescription &desc = ctx.desc;
     // ---- Top-level shapes ----
     for (const ShapeEntity &sh : desc.shapes) ctx.Collect([&] {
-        CheckMedia(sh);
+        size_t firstShape = ctx.scene.shapes.size();
         Placement pl;
         pl.shape = &sh;
         pl.renderFromObject = sh.renderFromObject;
@@ -437,6 +443,7 @@ void BuildShapes(BuildContext &ctx) {
             }
         }
         BuildOne(ctx, pl, true);
+        SetMedia(ctx, sh, firstShape);
     });
 
     // ---- Object instances: flattened into render-space copies ----
@@ -447,7 +454,7 @@ void BuildShapes(BuildContext &ctx) {
         if (it == desc.instanceDefinitions.end()) Fail(use.loc, "object instance " + Quoted(use.name) + " is not defined");
         ctx.scene.stats.instanceUses++;
         for (const ShapeEntity &sh : it->second.shapes) ctx.Collect([&] {
-            CheckMedia(sh);
+            size_t firstShape = ctx.scene.shapes.size();
             Placement pl;
             pl.shape = &sh;
             pl.renderFromObject = use.renderFromInstance * sh.renderFromObject;
@@ -460,6 +467,7 @@ void BuildShapes(BuildContext &ctx) {
             pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
             // Area lights inside instances do not emit (pbrt-v4; the parser warns).
             BuildOne(ctx, pl, pl.firstUse);
+            SetMedia(ctx, sh, firstShape);
         });
     }
 }

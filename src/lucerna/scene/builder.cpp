@@ -37,6 +37,9 @@ SceneView HostScene::View() const {
     v.spectrumTextures = SpanOf(spectrumTextures);
     v.distributions2D = SpanOf(distributions2D);
     v.distData = SpanOf(distData);
+    v.media = SpanOf(media);
+    v.mediumData = SpanOf(mediumData);
+    v.walkInterfaces = walkInterfaces;
     v.spectra = spectra.Tables();
     RGBToSpectrumTableData t = SRGBToSpectrumTable();
     v.rgbToSpecRes = t.res;
@@ -401,12 +404,14 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
         BuildSampler(ctx);
         ctx.Collect([&] { BuildIntegrator(ctx); });
 
-        for (const auto &m : desc.media)
-            ctx.Collect([&] { FailUnsupported(m.loc, "MakeNamedMedium " + Quoted(m.name) + " (participating media)"); });
-
+        ctx.Collect([&] { BuildMedia(ctx); });
         IndexTextures(ctx);
         BuildMaterials(ctx);
         BuildShapes(ctx);
+        scene->walkInterfaces = !scene->media.empty();
+        for (const Shape &sh : scene->shapes) scene->walkInterfaces |= sh.material == NoIndex;
+        if (scene->mediumData.size() > size_t(UINT32_MAX))
+            ctx.Collect([&] { FailUnsupported({}, "media grids of more than 2^32 values in all"); });
         BuildLights(ctx);
         FinishLights(ctx);
     } catch (const SceneError &e) {

@@ -21,6 +21,7 @@ struct SceneStats {
     std::map<std::string, int> shapesByType;     // Shape directives (instanced copies included)
     std::map<std::string, int> lightsByType;     // LightSource types; "diffuse area" counts emitting primitives
     std::map<std::string, int> materialsByType;  // every Material / MakeNamedMaterial, "interface" included
+    std::map<std::string, int> mediaByType;      // MakeNamedMedium types
     uint64_t triangles = 0;                      // after flattening instances and triangulating
     int areaLightShapes = 0;                     // shapes carrying an AreaLightSource
     int floatTextures = 0, spectrumTextures = 0;
@@ -63,6 +64,9 @@ class HostScene {
     std::vector<SpectrumTexture> spectrumTextures;
     std::vector<Distribution2D> distributions2D;
     std::vector<Float> distData;
+    std::vector<Medium> media;
+    std::vector<Float> mediumData;
+    bool walkInterfaces = false;   // media or interface shapes: shadow rays walk through interfaces
     CameraData camera;
     FilmData film;
     FilterData filter;

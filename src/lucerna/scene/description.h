@@ -81,7 +81,11 @@ struct TransformedEntity : SceneEntity {
 struct CameraEntity : SceneEntity {
     Transform worldFromCamera;  // inverse of the CTM at the Camera directive
     // Lucerna renders in world space: renderFromWorld is the identity.
+    std::string medium;         // the outside medium at the Camera directive ("" none)
 };
+
+// MakeNamedMedium "name" "string type" ...: name in `name`, parameters (with "type") in params.
+struct MediumEntity : TransformedEntity {};
 
 struct ShapeEntity : TransformedEntity {
     bool reverseOrientation = false;
@@ -89,7 +93,7 @@ struct ShapeEntity : TransformedEntity {
     int materialIndex = -1;
     std::string materialName;           // NamedMaterial in effect ("" if materialIndex used)
     int areaLightIndex = -1;            // index into SceneDescription::areaLights, -1 none
-    std::string insideMedium, outsideMedium;  // recorded to report media as unsupported
+    std::string insideMedium, outsideMedium;  // MediumInterface in effect ("" none)
     std::string baseDirectory;          // directory of the file that declared the shape (for plymesh)
 };
 
@@ -132,7 +136,7 @@ struct SceneDescription {
     std::vector<ShapeEntity> shapes;
     std::map<std::string, InstanceDefinition> instanceDefinitions;
     std::vector<InstanceUse> instances;
-    std::vector<SceneEntity> media;                    // MakeNamedMedium (unsupported)
+    std::vector<MediumEntity> media;                   // MakeNamedMedium, in file order
     std::string baseDirectory;                         // directory of the main file
     std::string filename;                              // the main file (whole-scene diagnostics)
     std::vector<std::string> inputFiles;               // every file read: the main file, then each Include/Import

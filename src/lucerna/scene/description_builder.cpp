@@ -229,6 +229,7 @@ void SceneDescriptionBuilder::Camera(const std::string &name, ParamList params, 
     desc_.camera.loc = loc;
     desc_.camera.params = ParameterDictionary(std::move(params));
     desc_.camera.worldFromCamera = lu::Transform(ToMatrix4(worldFromCamera), ToMatrix4(cameraFromWorld));
+    desc_.camera.medium = state_.outsideMedium;
     DMatrix inv1;
     if (!Invert(state_.ctm[1], &inv1)) inv1 = worldFromCamera;
     namedCoordinateSystems_["camera"].m[0] = worldFromCamera;
@@ -346,10 +347,11 @@ void SceneDescriptionBuilder::MakeNamedMedium(const std::string &name, ParamList
     Enter(Block::Any, "MakeNamedMedium", loc);
     NoteParams(params);
     if (!mediumNames_.insert(name).second) throw SceneError(loc, "named medium \"" + name + "\" is already defined");
-    SceneEntity e;
+    MediumEntity e;
     e.name = name;
     e.loc = loc;
     e.params = MakeDict(std::move(params), state_.mediumAttributes, loc);
+    e.renderFromObject = CurrentTransform(loc, "MakeNamedMedium");
     desc_.media.push_back(std::move(e));
 }
 

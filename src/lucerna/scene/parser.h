@@ -106,7 +106,7 @@ class ParserTarget {
     virtual void IncludeBegin(bool isImport, const FileLoc &loc) = 0;
     virtual void IncludeEnd(bool isImport, const FileLoc &loc) = 0;
     // Each file the parser has read (the main file, then each Include/Import), before its directives.
-    virtual void FileRead(const std::string &path) {}
+    virtual void FileRead(const std::string & /*path*/) {}
     // After the last directive of the main file.
     virtual void EndOfFiles() = 0;
 };

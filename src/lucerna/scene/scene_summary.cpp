@@ -51,6 +51,7 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     o << "triangles: " << st.triangles << "\n";
     o << "lights: " << Counts(st.lightsByType) << "\n";
     o << "materials: " << Counts(st.materialsByType) << "\n";
+    if (!st.mediaByType.empty()) o << "media: " << Counts(st.mediaByType) << "\n";
     o << "textures: " << st.floatTextures << " float, " << st.spectrumTextures << " spectrum\n";
     o << "instances: " << st.instanceDefinitions << " definitions, " << st.instanceUses << " uses\n";
     if (s.bounds.Empty()) o << "bounds: empty\n";

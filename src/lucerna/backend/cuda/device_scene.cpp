@@ -12,8 +12,7 @@ Span<T> DeviceScene::Upload(DeviceBuffer<T> &buf, Span<T> host) {
 
 DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     // Every span of SceneView must be uploaded below; this trips when SceneView changes.
-    // (728: CameraData::kind, a scalar, copies with the view.)
-    static_assert(sizeof(SceneView) == 728, "SceneView changed: upload its new spans in DeviceScene");
+    static_assert(sizeof(SceneView) == 768, "SceneView changed: upload its new spans in DeviceScene");
     view_ = host;   // scalars (camera, film, filter, bounds, table sizes) copy as they are
     view_.positions = Upload(positions_, host.positions);
     view_.normals = Upload(normals_, host.normals);
@@ -35,6 +34,8 @@ DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     view_.distData = Upload(distData_, host.distData);
     view_.rgbToSpecCoeffs = Upload(rgbToSpecCoeffs_, host.rgbToSpecCoeffs);
     view_.rgbToSpecZNodes = Upload(rgbToSpecZNodes_, host.rgbToSpecZNodes);
+    view_.media = Upload(media_, host.media);
+    view_.mediumData = Upload(mediumData_, host.mediumData);
     Span<Float> spectra{host.spectra.data, uint32_t(host.spectra.count * TabulatedSpectrumSize)};
     view_.spectra.data = Upload(spectra_, spectra).ptr;
     view_.spectra.count = host.spectra.count;

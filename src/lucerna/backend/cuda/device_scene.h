@@ -40,6 +40,8 @@ class DeviceScene {
     DeviceBuffer<Float> distData_;
     DeviceBuffer<Float> spectra_;
     DeviceBuffer<Float> rgbToSpecCoeffs_, rgbToSpecZNodes_;
+    DeviceBuffer<Medium> media_;
+    DeviceBuffer<Float> mediumData_;
     DeviceBuffer<BVHNode> nodes_;
     DeviceBuffer<PrimRef> prims_;
     SceneView view_;
