@@ -80,7 +80,9 @@ __attribute__((target("avx2"))) inline uint64_t ZSobolDigitsAVX2(uint64_t rest, 
 
 // GCC 12's AVX-512 intrinsic headers trip -Wmaybe-uninitialized (their _mm512_undefined_*).
 #pragma GCC diagnostic push
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #pragma GCC diagnostic ignored "-Wuninitialized"
 // y % 24 for y < 2^40 in doubles: q = floor(fma(y, 1/24, 2^-10)) is exactly floor(y / 24) (the
 // error, below 2^-16, cannot cross an integer: y / 24 has a fraction 0 or >= 1/24 and at most

@@ -174,7 +174,9 @@ uint32_t DefaultMaterial(BuildContext &ctx) {
 
 void BuildMaterials(BuildContext &ctx) {
     // Named materials first (pbrt-v4's CreateMaterials order), then the anonymous ones.
-    for (const auto &[name, e] : ctx.desc.namedMaterials) {
+    for (const auto &named : ctx.desc.namedMaterials) {
+        const std::string &name = named.first;   // (no structured binding: clang 14 cannot capture one)
+        const auto &e = named.second;
         std::string type = e.params.GetOneString("type", "");
         if (!e.params.Has("type"))
             Fail(e.loc, "named material " + Quoted(name) + ": \"string type\" not provided in its parameters");
