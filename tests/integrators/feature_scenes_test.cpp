@@ -12,16 +12,7 @@
 namespace lu::test {
 namespace {
 
-std::vector<std::string> FeatureScenes() {
-    std::vector<std::string> files;
-    for (const auto &e : std::filesystem::directory_iterator(std::string(LUCERNA_SOURCE_DIR) + "/scenes/features")) {
-        std::string name = e.path().filename().string();
-        if ((name.rfind("samplers-", 0) == 0 || name.rfind("cameras-", 0) == 0) && e.path().extension() == ".pbrt")
-            files.push_back(e.path().string());
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<std::string> FeatureScenes() { return FeatureSceneFiles({"samplers-", "cameras-"}); }
 
 }  // namespace
 

@@ -1,7 +1,10 @@
 // Lucerna integrator tests: render a scene given as text or file, with statistics over pixels.
 #pragma once
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,19 @@ inline std::unique_ptr<HostScene> LoadSceneText(const std::string &name, const s
     Diagnostics diag;
     diag.quiet = true;
     return LoadScene(path, diag, opts);
+}
+
+// The scenes of scenes/features/ whose file names start with one of the prefixes, sorted.
+inline std::vector<std::string> FeatureSceneFiles(std::initializer_list<const char *> prefixes) {
+    std::vector<std::string> files;
+    for (const auto &e : std::filesystem::directory_iterator(std::string(LUCERNA_SOURCE_DIR) + "/scenes/features")) {
+        std::string name = e.path().filename().string();
+        if (e.path().extension() != ".pbrt") continue;
+        for (const char *prefix : prefixes)
+            if (name.rfind(prefix, 0) == 0) files.push_back(e.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
 }
 
 // The scene's own settings with a fixed pass count, quiet.
