@@ -117,6 +117,9 @@ int PrepareRender(const std::string &sceneFile, const std::string &res, const Se
         SetRenderSetting(s, name, value, &error);   // checked above
     }
     if (Given(overrides, "time") && !Given(overrides, "spp")) s.spp = 1 << 24;   // time-bounded: passes until the budget
+    if (!s.Regularizes())   // a beam's emission is a Dirac delta in direction: only the regularized kernel reaches it
+        for (const FileLoc &loc : out->scene->collimatedLightLocs)
+            diag.Warning(loc, "collimated light: path cannot connect to a collimated beam (it renders black); use regpath");
     s.device = haveGpu ? DeviceKind::CUDA : DeviceKind::CPU;
 
     const Sampler &smp = out->scene->sampler;

@@ -167,7 +167,7 @@ struct Shape {
 
 // ---- Lights ----
 
-enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite };
+enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Collimated };
 
 struct Light {
     LightKind kind = LightKind::Point;
@@ -187,6 +187,11 @@ struct Light {
     // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
     Vec3f boundCenter;
     Float boundRadius = -1;
+    // Collimated beam (Lucerna extension, lights/collimated.h): a disc of radius beamRadius at
+    // `position` whose normal `direction` is the beam's direction of travel; spectral irradiance
+    // E(y) = spectrum * scale * profile, profile uniform (beamWaist == 0) or gaussian
+    // exp(-2 rho^2 / beamWaist^2) (1/e^2 radius beamWaist), 0 outside the disc.
+    Float beamRadius = 0, beamWaist = 0;
 };
 
 // Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:
@@ -294,6 +299,7 @@ struct SceneView {
     // shapes); false: a shadow ray is one occlusion query.
     bool walkInterfaces = false;
     uint32_t transmitters = 0;      // materials that can transmit light (dielectric, thindielectric)
+    uint32_t collimatedLights = 0;  // LightKind::Collimated lights (rays test their discs only when > 0)
     CameraData camera;
     FilmData film;
     FilterData filter;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "lucerna/integrators/regularization.h"
+#include "lucerna/lights/collimated.h"
 #include "lucerna/lights/lights.h"
 #include "lucerna/sampling/mis.h"
 
@@ -96,8 +97,11 @@ LU_INLINE bool AllowIncompletePDF(LightStrategy s) { return s == LightStrategy::
 
 // A point on the picked light seen from ctx: false when the light gives nothing there.
 // pdfLightW of the sample = pick.pmf * ls->pdf (ls->pdf is the light's own solid-angle pdf).
+// beamOneMinusCos: the pass's cone for collimated beams (BeamOneMinusCos; 0: they give nothing).
 LU_INLINE bool SampleLightPoint(const SceneView &scene, const Light &light, const LightSampleContext &ctx, Vec2f u,
-                                const SampledWavelengths &lambda, bool allowIncompletePDF, LightLiSample *ls) {
+                                const SampledWavelengths &lambda, bool allowIncompletePDF, LightLiSample *ls,
+                                Float beamOneMinusCos = 0) {
+    if (light.kind == LightKind::Collimated) return SampleBeamLi(light, scene, ctx, u, beamOneMinusCos, lambda, ls);
     return SampleLi(light, scene, ctx, u, lambda, ls, allowIncompletePDF) && ls->pdf != 0 && !ls->L.IsBlack();
 }
 

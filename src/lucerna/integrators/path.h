@@ -8,6 +8,7 @@
 #include "lucerna/camera/camera.h"
 #include "lucerna/film/film_sample.h"
 #include "lucerna/geometry/shapes.h"
+#include "lucerna/integrators/collimated.h"
 #include "lucerna/integrators/techniques.h"
 #include "lucerna/integrators/volume.h"
 
@@ -41,15 +42,22 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
     uint32_t medium = scene.camera.medium;   // the medium the current ray travels in
     WavelengthPdfs r;                        // used once the path has entered a medium
     bool inMedia = false;
+    uint32_t crossedBeam = NoIndex;          // the collimated light's disc the ray was continued through
     for (int guard = 0; guard < 1024; ++guard) {
         HitRecord hit;
         ++st.rays;
         bool found = tracer.Intersect(ray, &hit);
+        // A collimated beam's disc before the hit (regularized passes only: otherwise it gives nothing).
+        Float tEnd = found ? hit.t : Infinity;
+        Vec3f yBeam;
+        uint32_t beam = NoIndex;
+        if (scene.collimatedLights > 0 && ps.reg.enabled)
+            beam = NearestBeamCrossing(scene, ray, tEnd, crossedBeam, &tEnd, &yBeam);
         // ---- The medium along the ray ----
         if (medium != NoIndex) {
             inMedia = true;
             Vec3f pScatter;
-            MediumEvent ev = SampleMediumSegment(scene, medium, ray, found ? hit.t : Infinity, lambda, sampler, depth,
+            MediumEvent ev = SampleMediumSegment(scene, medium, ray, tEnd, lambda, sampler, depth,
                                                  ps.maxDepth, beta, r, L, &pScatter);
             if (ev == MediumEvent::Terminated) break;
             if (ev == MediumEvent::Scattered) {
@@ -62,8 +70,10 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 vm.medium = medium;
                 vm.r = &r;
                 if (ps.strategy != LightStrategy::BSDFOnly)
-                    L += beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st, ps.strategy);
+                    L += beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st, ps.strategy,
+                                         0, BeamOneMinusCos(ps.reg));
                 SamplePhaseDirection(pScatter, wo, g, sampler, prev, ray);
+                crossedBeam = NoIndex;
                 r.l = r.u;
                 if (!beta.IsFinite()) {
                     st.invalid = true;
@@ -73,6 +83,12 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             }
         }
         const WavelengthPdfs *rPath = inMedia ? &r : nullptr;
+        if (beam != NoIndex) {   // the beam's regularized radiance; the ray goes on through the disc
+            L += beta * BeamHitLe(prev, scene, beam, ray, yBeam, ps, rPath, lambda);
+            ray.o = yBeam;
+            crossedBeam = beam;
+            continue;
+        }
         // ---- Emitters the ray reaches ----
         if (!found) {
             for (uint32_t k = 0; k < scene.infiniteLights.size; ++k) {
@@ -117,6 +133,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- BSDF sampling ----
         if (!SampleBSDFDirection(si, bsdf, sampler, beta, etaScale, here, ray)) break;
         prev = here;
+        crossedBeam = NoIndex;
         if (scene.walkInterfaces) {
             medium = MediumAfter(shape, si.n, ray.d, medium);
             r.l = r.u;

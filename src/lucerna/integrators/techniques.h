@@ -158,14 +158,15 @@ template <typename Tracer, typename Scatter>
 LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               int mneeBudget = 0) {
+                               int mneeBudget = 0, Float beamOneMinusCos = 0) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls)) return SampledSpectrum(0);
+    if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls, beamOneMinusCos))
+        return SampledSpectrum(0);
     SampledSpectrum f = sc.f(wo, ls.wi);
     if (f.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
@@ -193,9 +194,9 @@ template <typename Tracer>
 LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               int mneeBudget = 0) {
+                               int mneeBudget = 0, Float beamOneMinusCos = 0) {
     return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda, sampler, scene, tracer, st,
-                    strategy, mneeBudget);
+                    strategy, mneeBudget, beamOneMinusCos);
 }
 
 // ---- The vertex record for MIS ----
@@ -247,6 +248,7 @@ LU_INLINE bool RegularizedCandidate(const SceneView &scene, uint32_t li, Vec3f p
                                     Float radius, bool deltaOnly, bool allowIncompletePDF) {
     const Light &light = scene.lights[li];
     if (deltaOnly && !IsDeltaLight(light)) return false;
+    if (light.kind == LightKind::Collimated) return false;   // reached by no connection from a Dirac lobe
     if (allowIncompletePDF && light.kind == LightKind::UniformInfinite) return false;
     if (light.boundRadius < 0) return true;
     for (int i = 0; i < n; ++i)
@@ -360,7 +362,7 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
         *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy,
-                       UsesMnee(ps, scene) ? ps.maxDepth - depth : 0);
+                       UsesMnee(ps, scene) ? ps.maxDepth - depth : 0, BeamOneMinusCos(ps.reg));
         return DirectTechnique::LightSample;
     }
     if (!ps.reg.enabled) return DirectTechnique::None;

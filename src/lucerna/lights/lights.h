@@ -164,6 +164,7 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
         ls->pLight = ctx.p + ls->wi * (2 * l.sceneRadius);
         return !ls->L.IsBlack();
     }
+    case LightKind::Collimated: break;   // needs the pass's cone: SampleBeamLi (lights/collimated.h)
     }
     return false;
 }

@@ -202,6 +202,8 @@ void BuildShapes(BuildContext &ctx);
 // ---- build_lights.cpp ----
 
 void BuildLights(BuildContext &ctx);
+// build_collimated.cpp: LightSource "collimated" (a Lucerna extension) into l.
+void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l);
 // Scene bounding sphere for distant / infinite lights and the power-proportional light CDF
 // (after all geometry exists).
 void FinishLights(BuildContext &ctx);

@@ -217,6 +217,8 @@ void BuildLights(BuildContext &ctx) {
             if (E_v > 0) l.scale *= E_v;
         } else if (e.name == "infinite") {
             BuildInfinite(ctx, e, l);
+        } else if (e.name == "collimated") {
+            BuildCollimated(ctx, e, l);
         } else if (e.name == "goniometric" || e.name == "projection") {
             FailUnsupported(e.loc, "LightSource " + Quoted(e.name));
         } else {

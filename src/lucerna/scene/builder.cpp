@@ -48,6 +48,7 @@ SceneView HostScene::View() const {
     v.illuminantTable = TableD65;
     for (const Material &m : materials)
         v.transmitters += m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric;
+    for (const Light &l : lights) v.collimatedLights += l.kind == LightKind::Collimated;
     v.camera = camera;
     v.film = film;
     v.filter = filter;

@@ -67,6 +67,7 @@ class HostScene {
     std::vector<Medium> media;
     std::vector<Float> mediumData;
     bool walkInterfaces = false;   // media or interface shapes: shadow rays walk through interfaces
+    std::vector<FileLoc> collimatedLightLocs;   // where each LightSource "collimated" is (the path warning)
     CameraData camera;
     FilmData film;
     FilterData filter;

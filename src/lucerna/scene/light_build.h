@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "lucerna/lights/collimated.h"
 #include "lucerna/lights/light_sampler.h"
 #include "lucerna/scene/distribution_build.h"
 
@@ -33,6 +34,7 @@ inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const Sample
             }
         return sum * (4 * Pi * Pi * Sqr(l.sceneRadius) * l.scale / Float(uint64_t(im.width) * im.height));
     }
+    case LightKind::Collimated: return spec * BeamProfileIntegral(l.beamRadius, l.beamWaist);
     }
     return SampledSpectrum(0);
 }

@@ -1,0 +1,120 @@
+// Lucerna scene builder: LightSource "collimated" (a Lucerna extension, docs/lights.md): a disc
+// emitting a collimated beam (laser, collimated LED) with a uniform or gaussian irradiance
+// profile, a spectrum or a laser line, normalized to "power" watts or scaled as pbrt-v4's lights.
+#include <cmath>
+#include <cstdio>
+
+#include "lucerna/lights/collimated.h"
+#include "lucerna/scene/build_internal.h"
+
+namespace lu::build {
+
+namespace {
+
+std::string Num(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", x);
+    return buf;
+}
+
+// A float parameter that must be finite and positive (when present).
+double PositiveFloat(const ParameterDictionary &p, const std::string &name, double def, const FileLoc &loc) {
+    double v = p.GetOneFloat(name, def);
+    if (!(v > 0) || !std::isfinite(v))
+        Fail(ParamLoc(p, name, loc), "collimated light: " + Quoted(name) + " must be positive (got " + Num(v) + ")");
+    return v;
+}
+
+// The laser line: a gaussian of full width at half maximum `bandwidth` nm around `wavelength`,
+// tabulated at 1 nm (hence bandwidth >= 1 nm).
+Spectrum LaserLine(BuildContext &ctx, const ParameterDictionary &p, const FileLoc &loc) {
+    double lambda0 = p.GetOneFloat("wavelength", 0);
+    if (!(lambda0 >= 360 && lambda0 <= 830))
+        Fail(ParamLoc(p, "wavelength", loc), "collimated light: \"wavelength\" must be in [360, 830] nm (got " + Num(lambda0) + ")");
+    double bw = p.GetOneFloat("bandwidth", 1);
+    if (!(bw >= 1 && bw <= 470))
+        Fail(ParamLoc(p, "bandwidth", loc), "collimated light: \"bandwidth\" (full width at half maximum) must be in [1, 470] nm "
+                                            "(got " + Num(bw) + "; spectra are tabulated at 1 nm)");
+    std::vector<double> lambdas, values;
+    for (int l = 360; l <= 830; ++l) {
+        lambdas.push_back(l);
+        values.push_back(std::exp(-4 * std::log(2.0) * (l - lambda0) * (l - lambda0) / (bw * bw)));
+    }
+    std::optional<Spectrum> s = ctx.Registry().FromPiecewise(lambdas, values);
+    if (!s) Fail(loc, "collimated light: cannot tabulate the laser line");
+    return *s;
+}
+
+// The integral of s over [360, 830] nm (trapezoids at 1 nm: exact for the tabulated spectra).
+double SpectrumIntegral(BuildContext &ctx, const Spectrum &s) {
+    double sum = 0;
+    for (int l = 360; l <= 830; ++l) sum += (l == 360 || l == 830 ? 0.5 : 1.0) * ctx.Registry().Eval(s, Float(l));
+    return sum;
+}
+
+}  // namespace
+
+void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
+    const ParameterDictionary &p = e.params;
+    const std::string owner = "LightSource \"collimated\"";
+    l.kind = LightKind::Collimated;
+    // ---- Spectrum: "E" (any pbrt-v4 spectrum), or a laser line ----
+    std::optional<Spectrum> E = GetSpectrum(ctx, p, "E", SpectrumType::Illuminant);
+    bool line = p.Has("wavelength");
+    if (E && line) Fail(ParamLoc(p, "wavelength", e.loc), "collimated light: give either \"E\" or \"wavelength\", not both");
+    if (!line && p.Has("bandwidth")) Fail(ParamLoc(p, "bandwidth", e.loc), "collimated light: \"bandwidth\" needs \"wavelength\"");
+    l.spectrum = line ? LaserLine(ctx, p, e.loc) : E ? *E : IlluminantSpectrum();
+    // ---- Geometry: the disc at "from", the beam towards "to", after the CTM ----
+    Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
+    Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
+    if (!(LengthSquared(to - from) > 0)) Fail(ParamLoc(p, "to", e.loc), "collimated light: \"from\" and \"to\" must differ");
+    Frame f = Frame::FromZ(Normalize(to - from));
+    l.renderFromLight = e.renderFromObject * TranslateTransform(from) * FromColumns(f.x, f.y, f.z);
+    l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
+    Vec3f ax = l.renderFromLight.ApplyVector(Vec3f(1, 0, 0)), ay = l.renderFromLight.ApplyVector(Vec3f(0, 1, 0));
+    Vec3f az = l.renderFromLight.ApplyVector(Vec3f(0, 0, 1));
+    Float sx = Length(ax), sy = Length(ay), sz = Length(az);
+    if (!(sx > 0 && sy > 0 && sz > 0) || !std::isfinite(sx) || !std::isfinite(sy) || !std::isfinite(sz) ||
+        !std::isfinite(l.position.x + l.position.y + l.position.z))
+        Fail(e.loc, "collimated light: the transformation is singular");
+    // The disc stays a disc perpendicular to the beam only under rotations, translations and
+    // uniform scales in its plane.
+    if (std::abs(sx - sy) > 1e-4f * sx || std::abs(Dot(ax, az)) > 1e-4f * sx * sz || std::abs(Dot(ay, az)) > 1e-4f * sy * sz ||
+        std::abs(Dot(ax, ay)) > 1e-4f * sx * sy)
+        Fail(e.loc, "collimated light: the transformation shears or scales the disc unevenly (it must stay a disc "
+                    "perpendicular to the beam)");
+    l.direction = az / sz;
+    // ---- Profile ----
+    double radius = PositiveFloat(p, "radius", 0.001, e.loc);
+    std::string profile = p.GetOneString("profile", "uniform");
+    double waist = 0;
+    if (profile == "gaussian") {
+        waist = PositiveFloat(p, "waist", radius, e.loc);
+    } else if (profile == "uniform") {
+        if (p.Has("waist")) Fail(ParamLoc(p, "waist", e.loc), "collimated light: \"waist\" applies to the \"gaussian\" profile only");
+    } else {
+        Fail(ParamLoc(p, "profile", e.loc), "collimated light: unknown \"profile\" " + Quoted(profile) +
+                                                " (expected \"uniform\" or \"gaussian\")");
+    }
+    l.beamRadius = Float(radius * sx);
+    l.beamWaist = Float(waist * sx);
+    // ---- Scale: "power" watts (radiometric, over 360-830 nm), else pbrt-v4's photometric scale ----
+    double scale = p.GetOneFloat("scale", 1);
+    if (!(scale >= 0) || !std::isfinite(scale))
+        Fail(ParamLoc(p, "scale", e.loc), owner + ": \"scale\" must not be negative (got " + Num(scale) + ")");
+    Float area = BeamProfileIntegral(l.beamRadius, l.beamWaist);
+    if (!(area > 0)) Fail(ParamLoc(p, "radius", e.loc), "collimated light: the disc is too small (zero area in float)");
+    if (p.Has("power")) {
+        double P = PositiveFloat(p, "power", 1, e.loc);
+        double integral = SpectrumIntegral(ctx, l.spectrum);
+        if (!(integral > 0))
+            Fail(e.loc, "collimated light: the spectrum has no energy in [360, 830] nm; \"power\" cannot normalize it");
+        l.scale = Float(scale * P / (integral * double(area)));
+    } else {
+        Float photometric = ctx.Registry().ToPhotometric(l.spectrum);
+        l.scale = Float(photometric > 0 ? scale / photometric : scale);
+    }
+    ctx.scene.collimatedLightLocs.push_back(e.loc);
+}
+
+}  // namespace lu::build

@@ -1,0 +1,258 @@
+// Lucerna: the collimated beam light (lights/collimated.h), regularized at the light. A beam
+// normal to a diffuse plane must deposit its power there (radiance albedo / pi times the beam's
+// irradiance), with a spot blur whose second moment is the cone kernel's and shrinks with N;
+// plain path tracing cannot reach the beam; the profile normalizes to "power"; bad parameters
+// are located errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "integrators/render_helpers.h"
+#include "lucerna/lights/collimated.h"
+#include "lucerna/scene/light_build.h"
+#include "lucerna/spectra/registry.h"
+
+namespace lu::test {
+
+namespace {
+
+constexpr double kR = 0.1, kD = 1.0, kP = 2.0, kAlbedo = 0.5, kSigma0 = 0.2;
+constexpr int kRes = 64;   // the film covers [-0.5, 0.5]^2 of the plane
+
+// A beam of radius kR at height kD pointing down onto a diffuse plane at z = 0, seen from above
+// by an orthographic camera (box filter: a pixel is the mean radiance over its square). The
+// beam's spectrum and the albedo are constant, so the image's Y is the radiance per nm.
+std::string BeamScene(const std::string &profile = "\"string profile\" \"uniform\"") {
+    char buf[2048];
+    std::snprintf(buf, sizeof(buf), R"(
+LookAt 0 0 2  0 0 0  0 1 0
+Camera "orthographic" "float screenwindow" [-0.5 0.5 -0.5 0.5]
+Film "rgb" "integer xresolution" %d "integer yresolution" %d "string filename" "x.exr"
+PixelFilter "box"
+Sampler "independent"
+WorldBegin
+LightSource "collimated" "point3 from" [0 0 %g] "point3 to" [0 0 0] "float radius" %g %s
+    "spectrum E" [360 1 830 1] "float power" %g
+Material "diffuse" "spectrum reflectance" [360 %g 830 %g]
+Shape "trianglemesh" "integer indices" [0 1 2 0 2 3] "point3 P" [-4 -4 0 4 -4 0 4 4 0 -4 4 0]
+)", kRes, kRes, kD, kR, profile.c_str(), kP, kAlbedo, kAlbedo);
+    return buf;
+}
+
+// Y (CIE luminance, the film's normalization: radiance per nm for a constant spectrum) per pixel.
+double PixelY(const Image &im, int x, int y) {
+    XYZ xyz = RGBToXYZ(RGB{im.At(x, y, 0), im.At(x, y, 1), im.At(x, y, 2)});
+    return xyz[1];
+}
+// Pixel centre on the plane (the sign of the axes does not matter to the moments used here).
+double PixelPos(int i) { return -0.5 + (i + 0.5) / kRes; }
+constexpr double kPixel = 1.0 / kRes;
+
+// Renders passes [firstPass, firstPass + passes): r_N, sigma_N are those of N = firstPass + 1 ...
+Image RenderBeamPasses(const HostScene &scene, bool regularize, uint32_t firstPass, int passes, uint32_t seed,
+                       int strategy = 0) {
+    RenderSettings settings = TestSettings(scene, int(firstPass) + passes, 1, seed);
+    settings.integrator = regularize ? IntegratorKind::RegPath : IntegratorKind::Path;
+    settings.regAngle = kSigma0 * 180 / M_PI;
+    settings.lightStrategy = LightStrategy(strategy);
+    FilmAccumulator film;
+    film.Resize(scene.View().film.width, scene.View().film.height);
+    film.passes = firstPass;
+    RenderStats st = RenderCPU(scene, settings, film);
+    EXPECT_EQ(st.rejected, 0u);
+    return film.Resolve(scene.View().film);
+}
+
+struct SpotMoments {
+    double power = 0;    // integral of the radiance over the plane (per nm)
+    double rho2 = 0;     // second moment of the spot about the axis
+    double centre = 0;   // mean radiance within rho < 0.5 R
+};
+SpotMoments Moments(const Image &im) {
+    SpotMoments m;
+    double w = 0, wr = 0, c = 0;
+    int nc = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) {
+            double v = PixelY(im, x, y), r2 = Sqr(PixelPos(x)) + Sqr(PixelPos(y));
+            w += v;
+            wr += v * r2;
+            if (r2 < Sqr(0.5 * kR)) { c += v; ++nc; }
+        }
+    m.power = w * kPixel * kPixel;
+    m.rho2 = wr / w;
+    m.centre = c / nc;
+    return m;
+}
+
+// Mean and standard error over independent renders.
+struct Stat {
+    double mean = 0, se = 0;
+};
+template <typename F>
+Stat OverSeeds(int n, F f) {
+    double s = 0, s2 = 0;
+    for (int i = 0; i < n; ++i) {
+        double v = f(uint32_t(i));
+        s += v;
+        s2 += v * v;
+    }
+    Stat st;
+    st.mean = s / n;
+    st.se = std::sqrt(std::max(0.0, s2 / n - st.mean * st.mean) / (n - 1));
+    return st;
+}
+
+// The spot's second moment predicted for passes N = first+1 .. first+passes: the disc's R^2 / 2
+// plus the kernel's d^2 <tan^2 theta> = d^2 (1 - cos sigma_N) / cos sigma_N (uniform cap), averaged
+// over the passes (each deposits the same power), plus a pixel's own spread (2 px^2 / 12).
+double PredictedRho2(uint32_t first, int passes) {
+    double sum = 0;
+    for (int k = 0; k < passes; ++k) {
+        double sigma = kSigma0 * std::pow(double(first + k + 1), -1.0 / 6);
+        sum += (1 - std::cos(sigma)) / std::cos(sigma);
+    }
+    return Sqr(kR) / 2 + Sqr(kD) * sum / passes + 2 * Sqr(kPixel) / 12;
+}
+
+}  // namespace
+
+// The plane receives the beam's power: integral of L over the plane = albedo / pi * P / 470 nm
+// (the radiance of a diffuse plane is albedo / pi times its irradiance; the spectrum is constant
+// over 470 nm), early (wide kernel) and late; the centre of the spot has the sharp beam's
+// irradiance P / (pi R^2) once the kernel is narrow; the spot's second moment is the kernel's and
+// shrinks towards the sharp disc's R^2 / 2 as N grows.
+TEST(Collimated, BeamNormalToADiffusePlaneDepositsItsPower) {
+    auto scene = LoadSceneText("beam_uniform", BeamScene());
+    const double perNm = kP / 470, power = kAlbedo / M_PI * perNm;
+    const double centre = kAlbedo / M_PI * perNm / (M_PI * kR * kR);
+    const int seeds = 4, passes = 16;
+    const uint32_t late = 1u << 20;
+    SpotMoments e[seeds], l[seeds];
+    for (int s = 0; s < seeds; ++s) {
+        e[s] = Moments(RenderBeamPasses(*scene, true, 0, passes, 7 + s));
+        l[s] = Moments(RenderBeamPasses(*scene, true, late, passes, 17 + s));
+    }
+    Stat ePow = OverSeeds(seeds, [&](uint32_t i) { return e[i].power; });
+    Stat lPow = OverSeeds(seeds, [&](uint32_t i) { return l[i].power; });
+    Stat eRho = OverSeeds(seeds, [&](uint32_t i) { return e[i].rho2; });
+    Stat lRho = OverSeeds(seeds, [&](uint32_t i) { return l[i].rho2; });
+    Stat lCen = OverSeeds(seeds, [&](uint32_t i) { return l[i].centre; });
+    EXPECT_NEAR(ePow.mean, power, 4 * ePow.se + 0.005 * power) << "se " << ePow.se;
+    EXPECT_NEAR(lPow.mean, power, 4 * lPow.se + 0.005 * power) << "se " << lPow.se;
+    EXPECT_NEAR(lCen.mean, centre, 4 * lCen.se + 0.01 * centre) << "se " << lCen.se;
+    double eRhoPred = PredictedRho2(0, passes), lRhoPred = PredictedRho2(late, passes);
+    EXPECT_NEAR(eRho.mean, eRhoPred, 4 * eRho.se + 0.01 * eRhoPred) << "se " << eRho.se;
+    EXPECT_NEAR(lRho.mean, lRhoPred, 4 * lRho.se + 0.01 * lRhoPred) << "se " << lRho.se;
+    // The bias: early spots are several times wider than the sharp one, late ones within 10%.
+    EXPECT_GT(eRho.mean, 4 * Sqr(kR) / 2);
+    EXPECT_LT(lRho.mean, 1.1 * Sqr(kR) / 2 + 2 * Sqr(kPixel) / 12);
+}
+
+// Next-event estimation alone and BSDF sampling alone estimate the same spot (the MIS pair of
+// the beam: both pdfs in solid angle at the plane).
+TEST(Collimated, ExplicitAndImplicitTechniquesAgree) {
+    auto scene = LoadSceneText("beam_techniques", BeamScene());
+    const double power = kAlbedo / M_PI * kP / 470;
+    for (int strategy : {1, 2}) {   // LightStrategy::NEEOnly, BSDFOnly
+        Stat p = OverSeeds(4, [&](uint32_t s) { return Moments(RenderBeamPasses(*scene, true, 0, 16, 40 + s, strategy)).power; });
+        EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "strategy " << strategy << " se " << p.se;
+    }
+}
+
+// Plain path tracing never reaches the beam: black.
+TEST(Collimated, PathRendersTheBeamBlack) {
+    auto scene = LoadSceneText("beam_path", BeamScene());
+    Image im = RenderBeamPasses(*scene, false, 0, 4, 1);
+    EXPECT_EQ(Moments(im).power, 0.0);
+}
+
+// The gaussian profile (waist w, truncated at R) deposits the same power, and it is more
+// concentrated: its second moment is the truncated gaussian's plus the kernel's.
+TEST(Collimated, GaussianProfileNormalizesToPower) {
+    const double w = 0.06;
+    char prof[128];
+    std::snprintf(prof, sizeof(prof), "\"string profile\" \"gaussian\" \"float waist\" %g", w);
+    auto scene = LoadSceneText("beam_gauss", BeamScene(prof));
+    // The light's own numbers: the integral of E over wavelength and disc is P (host quadrature).
+    const Light &l = scene->lights[0];
+    ASSERT_EQ(l.kind, LightKind::Collimated);
+    double integral = 0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i) {
+        double rho = (i + 0.5) / n * kR;
+        double e = 0;
+        for (int lam = 360; lam <= 830; ++lam)
+            e += (lam == 360 || lam == 830 ? 0.5 : 1.0) * scene->spectra.Eval(l.spectrum, Float(lam));
+        integral += e * l.scale * BeamProfile(l, Float(rho * rho)) * 2 * M_PI * rho * (kR / n);
+    }
+    EXPECT_NEAR(integral, kP, 1e-3 * kP);
+    // Light selection sees the same power (LightPhi at the sampled wavelengths).
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.3f);
+    SampledSpectrum phi = LightPhi(l, scene->View(), lambda);
+    for (int i = 0; i < NSpectrumSamples; ++i) EXPECT_NEAR(phi[i], kP / 470, 1e-3 * kP / 470);
+    // Through the renderer.
+    const double power = kAlbedo / M_PI * kP / 470;
+    SpotMoments m[4];
+    for (int s = 0; s < 4; ++s) m[s] = Moments(RenderBeamPasses(*scene, true, 1u << 20, 16, 60 + s));
+    Stat p = OverSeeds(4, [&](uint32_t i) { return m[i].power; });
+    Stat r = OverSeeds(4, [&](uint32_t i) { return m[i].rho2; });
+    EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "se " << p.se;
+    // <rho^2> of exp(-2 rho^2 / w^2) truncated at R: w^2 / 2 - R^2 e^(-a) / (1 - e^(-a)), a = 2 R^2 / w^2.
+    double a = 2 * kR * kR / (w * w);
+    double gauss = w * w / 2 - kR * kR * std::exp(-a) / (1 - std::exp(-a));
+    double pred = gauss + (PredictedRho2(1u << 20, 16) - Sqr(kR) / 2);
+    EXPECT_NEAR(r.mean, pred, 4 * r.se + 0.01 * pred) << "se " << r.se;
+}
+
+// Bad parameters: a located error (the parameter's position), and nothing built.
+TEST(Collimated, BadParametersAreLocatedErrors) {
+    struct Case {
+        const char *params, *message;
+    } cases[] = {
+        {"\"float radius\" -1", "\"radius\" must be positive"},
+        {"\"float radius\" 0", "\"radius\" must be positive"},
+        {"\"string profile\" \"gaussian\" \"float waist\" 0", "\"waist\" must be positive"},
+        {"\"string profile\" \"gaussian\" \"float waist\" -2", "\"waist\" must be positive"},
+        {"\"float waist\" 0.1", "\"waist\" applies to the \"gaussian\" profile only"},
+        {"\"string profile\" \"tophat\"", "unknown \"profile\" \"tophat\""},
+        {"\"float wavelength\" 1064", "\"wavelength\" must be in [360, 830] nm"},
+        {"\"float wavelength\" 300", "\"wavelength\" must be in [360, 830] nm"},
+        {"\"float wavelength\" 532 \"float bandwidth\" 0.1", "\"bandwidth\" (full width at half maximum) must be in [1, 470]"},
+        {"\"float bandwidth\" 2", "\"bandwidth\" needs \"wavelength\""},
+        {"\"float wavelength\" 532 \"blackbody E\" 3000", "give either \"E\" or \"wavelength\""},
+        {"\"float power\" 0", "\"power\" must be positive"},
+        {"\"float scale\" -1", "\"scale\" must not be negative"},
+        {"\"point3 from\" [0 0 1] \"point3 to\" [0 0 1]", "\"from\" and \"to\" must differ"},
+    };
+    for (const Case &c : cases) {
+        std::string text = std::string("WorldBegin\nLightSource \"collimated\"\n    ") + c.params + "\n";
+        try {
+            LoadSceneText("beam_bad", text);
+            ADD_FAILURE() << "accepted: " << c.params;
+        } catch (const SceneError &e) {
+            EXPECT_NE(e.Message().find(c.message), std::string::npos) << c.params << ": " << e.Message();
+            EXPECT_EQ(e.Loc().line, 3) << c.params << ": " << e.Format();   // at the parameter
+            EXPECT_GT(e.Loc().col, 4) << c.params << ": " << e.Format();
+        }
+    }
+    // A non-uniform scale would make the disc an ellipse.
+    try {
+        LoadSceneText("beam_bad", "WorldBegin\nScale 1 2 1\nLightSource \"collimated\"\n");
+        ADD_FAILURE() << "accepted a non-uniform scale";
+    } catch (const SceneError &e) {
+        EXPECT_NE(e.Message().find("scales the disc unevenly"), std::string::npos) << e.Message();
+        EXPECT_EQ(e.Loc().line, 3);
+    }
+    // A laser line of 532 nm, and a uniform scale (the radius scales with it).
+    auto ok = LoadSceneText("beam_ok", "WorldBegin\nScale 2 2 2\nLightSource \"collimated\" \"float wavelength\" 532 "
+                                       "\"float radius\" 0.01 \"float power\" 1\n");
+    ASSERT_EQ(ok->lights.size(), 1u);
+    const Light &l = ok->lights[0];
+    EXPECT_NEAR(l.beamRadius, 0.02, 1e-7);
+    EXPECT_GT(ok->spectra.Eval(l.spectrum, 532), 100 * ok->spectra.Eval(l.spectrum, 540));
+    EXPECT_NEAR(ok->spectra.Eval(l.spectrum, 533) / ok->spectra.Eval(l.spectrum, 532), 0.0625, 1e-3);   // FWHM 1 nm: 2^-4 at 1 nm
+}
+
+}  // namespace lu::test
