@@ -203,6 +203,7 @@ TEST(Collimated, GaussianProfileNormalizesToPower) {
     SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.3f);
     SampledSpectrum phi = LightPhi(l, scene->View(), lambda);
     for (int i = 0; i < NSpectrumSamples; ++i) EXPECT_NEAR(phi[i], kP / 470, 1e-3 * kP / 470);
+    EXPECT_NEAR(LightPower(l, scene->View()), kP, 1e-3 * kP);
     // Through the renderer.
     const double power = kAlbedo / M_PI * kP / 470;
     SpotMoments m[4];
@@ -264,6 +265,8 @@ TEST(Collimated, BadParametersAreLocatedErrors) {
     EXPECT_NEAR(l.beamRadius, 0.02, 1e-7);
     EXPECT_GT(ok->spectra.Eval(l.spectrum, 532), 100 * ok->spectra.Eval(l.spectrum, 540));
     EXPECT_NEAR(ok->spectra.Eval(l.spectrum, 533) / ok->spectra.Eval(l.spectrum, 532), 0.0625, 1e-3);   // FWHM 1 nm: 2^-4 at 1 nm
+    // The light sampler's power of the 1 nm line is its 1 W, not what four wavelengths happen to see.
+    EXPECT_NEAR(LightPower(l, ok->View()), 1.0, 1e-3);
 }
 
 }  // namespace lu::test

@@ -40,8 +40,17 @@ inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const Sample
 }
 
 // The power pbrt-v4's PowerLightSampler assigns to a light: Phi at the wavelengths
-// SampleVisible(0.5), divided by their pdfs, averaged.
+// SampleVisible(0.5), divided by their pdfs, averaged (an estimate of the integral of Phi over
+// wavelength). Collimated beams (a Lucerna extension) get that integral exactly, 1 nm steps over
+// 360-830 nm: a laser line a few nm wide would fall between the four wavelengths and get no
+// light samples at all.
 inline Float LightPower(const Light &l, const SceneView &s) {
+    if (l.kind == LightKind::Collimated) {
+        double sum = 0;
+        for (int nm = 360; nm <= 830; ++nm)
+            sum += (nm == 360 || nm == 830 ? 0.5 : 1.0) * double(EvalSpectrum(l.spectrum, Float(nm), s.spectra));
+        return Float(sum * double(l.scale) * double(BeamProfileIntegral(l.beamRadius, l.beamWaist)));
+    }
     SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
     return SafeDiv(LightPhi(l, s, lambda), lambda.PDF()).Average();
 }
