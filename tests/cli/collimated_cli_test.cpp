@@ -24,8 +24,8 @@ TEST(CollimatedCli, InfoWarningAndErrors) {
                                      "-o", dir + "/p.exr"});
     EXPECT_EQ(path.exitCode, 0) << path.output;
     const std::string warning = "warning: collimated light: path cannot connect to a collimated beam";
-    EXPECT_TRUE(Has(path.output, scene + ":30:1: " + warning)) << path.output;
-    EXPECT_TRUE(Has(path.output, scene + ":35:1: " + warning)) << path.output;
+    EXPECT_TRUE(Has(path.output, scene + ":31:1: " + warning)) << path.output;
+    EXPECT_TRUE(Has(path.output, scene + ":36:1: " + warning)) << path.output;
     ProcessResult reg = RunProcess({Bin(), "render", scene, "--integrator", "regpath", "--res", "16x10", "--spp", "1", "-q",
                                     "-o", dir + "/r.exr"});
     EXPECT_EQ(reg.exitCode, 0) << reg.output;
