@@ -231,6 +231,7 @@ void BuildLights(BuildContext &ctx) {
         s.stats.lightsByType[e.name]++;
         if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
             s.infiniteLights.push_back(uint32_t(s.lights.size()));
+        s.SetOrigin(s.lightOrigin, s.lights.size(), owner + " at " + e.loc.ToString());
         s.lights.push_back(l);
     });
 }
