@@ -105,22 +105,36 @@ struct SpectrumTexture {
 
 // ---- Materials ----
 
-enum class MaterialKind : uint8_t { Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface };
+enum class MaterialKind : uint8_t {
+    Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface,
+    CoatedConductor, DiffuseTransmission, Mix
+};
 
 struct Material {
     MaterialKind kind = MaterialKind::Diffuse;
-    SpectrumTexture reflectance;          // diffuse, coateddiffuse, conductor when useReflectance
-    SpectrumTexture conductorEta, conductorK;
-    bool useReflectance = false;          // conductor given "reflectance" instead of eta/k
-    FloatTexture uRoughness, vRoughness;  // conductor, dielectric, coateddiffuse (interface roughness)
+    SpectrumTexture reflectance;          // diffuse, coateddiffuse, diffusetransmission, (coated)conductor when useReflectance
+    SpectrumTexture conductorEta, conductorK;   // conductor; coatedconductor's conductor.eta / conductor.k
+    bool useReflectance = false;          // (coated)conductor given "reflectance" instead of eta/k
+    FloatTexture uRoughness, vRoughness;  // conductor, dielectric, coateddiffuse and coatedconductor (interface roughness)
     bool remapRoughness = true;
-    Spectrum eta = Spectrum::Const(1.5f); // dielectric, thindielectric, coateddiffuse interface;
+    Spectrum eta = Spectrum::Const(1.5f); // dielectric, thindielectric, coated* interface;
                                           // a non-constant eta makes the dielectric dispersive
-    // coateddiffuse (pbrt-v4 defaults)
+    // coateddiffuse and coatedconductor (pbrt-v4 defaults)
     FloatTexture thickness;               // default 0.01
     FloatTexture g;                       // default 0
     SpectrumTexture albedo;               // default 0
     int maxDepth = 10, nSamples = 1;
+    FloatTexture conductorURoughness, conductorVRoughness;   // coatedconductor's conductor.roughness (default 0)
+    // diffusetransmission: reflectance (default 0.25), transmittance (default 0.25), both times scale
+    SpectrumTexture transmittance;
+    Float scale = 1;
+    // mix: mixMaterials[1] where a hash u of (p, wo) in [0,1) is <= amount, else mixMaterials[0]
+    // (pbrt-v4's MixMaterial::ChooseMaterial); the children are earlier materials, maybe mixes.
+    FloatTexture amount;                  // default 0.5
+    uint32_t mixMaterials[2] = {NoIndex, NoIndex};
+    // "normalmap" (any material but mix): scene.images index of a linear RGB image, tangent-space
+    // normals in [0,1]^3, repeat wrap (pbrt-v4's NormalMap); NoIndex: none.
+    uint32_t normalMap = NoIndex;
 };
 
 // ---- Shapes ----

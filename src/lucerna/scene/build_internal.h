@@ -128,6 +128,7 @@ struct BuildContext {
     std::vector<std::string> anonymousMaterialTypes;
     std::map<std::string, uint32_t> namedMaterials;
     std::map<std::string, std::string> namedMaterialTypes;
+    std::set<std::string> namedMaterialsBuilding;  // a mix's children are built first (cycle detection)
     uint32_t defaultMaterial = NoIndex;  // diffuse 0.5, created on first use
 
     // Media by name -> scene.media index.
