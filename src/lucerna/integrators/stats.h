@@ -46,9 +46,9 @@ LU_INLINE bool FindBadValue(const SampledSpectrum &v, BadValue *kind) {
 // True when every wavelength is finite and non-negative (one pass of comparisons, no branches:
 // NaN fails both).
 LU_INLINE bool AllFiniteNonNegative(const SampledSpectrum &v) {
-    bool ok = true;
-    for (int i = 0; i < NSpectrumSamples; ++i) ok &= (v[i] >= 0) & (v[i] <= Float(3.402823466e38));
-    return ok;
+    int ok = 1;
+    for (int i = 0; i < NSpectrumSamples; ++i) ok &= int(v[i] >= 0) & int(v[i] <= Float(3.402823466e38));
+    return ok != 0;
 }
 
 // Records the first bad value of a path: a contribution (or throughput) v from `cause` at entity
