@@ -1,5 +1,5 @@
-// Lucerna: light sampling and emission for point, spot, distant, diffuse area, uniform and image
-// infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
+// Lucerna: light sampling and emission for point, spot, goniometric, distant, diffuse area, uniform
+// and image infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
 // with shape sampling in shape_sampling.h and the power-based light selection in light_sampler.h.
 #pragma once
 
@@ -22,7 +22,8 @@ struct LightLiSample {
 };
 
 LU_INLINE bool IsDeltaLight(const Light &l) {
-    return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant;
+    return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant ||
+           l.kind == LightKind::Goniometric;
 }
 
 LU_INLINE bool IsInfiniteLight(const Light &l) {
@@ -39,6 +40,33 @@ LU_INLINE Float SmoothStep(Float x, Float a, Float b) {
 // Spot light falloff for a unit direction wLight in light space (+z is the spot axis).
 LU_INLINE Float SpotFalloff(const Light &l, const Vec3f &wLight) {
     return SmoothStep(wLight.z, l.cosFalloffEnd, l.cosFalloffStart);
+}
+
+// The intensity scale of l's profile table (Light::profile, one channel, equal-area) at the unit
+// light-space direction w: pbrt-v4's GoniometricLight::I lookup (EqualAreaSphereToSquare, the
+// nearest texel, coordinates clamped) or, for tables made from IES files (profileBilinear),
+// bilinear between texel centers with the octahedral wrap across the seams.
+LU_INLINE Float ProfileValue(const Light &l, const SceneView &s, Vec3f w) {
+    const ImageData &im = s.images[l.profile];
+    const Float *t = s.texels.ptr + im.offset;
+    int width = int(im.width), height = int(im.height);
+    Vec2f uv = EqualAreaSphereToSquare(w);
+    if (!l.profileBilinear) {
+        int x = Clamp(int(uv.x * Float(width)), 0, width - 1), y = Clamp(int(uv.y * Float(height)), 0, height - 1);
+        return t[uint64_t(y) * uint32_t(width) + uint32_t(x)];
+    }
+    Float px = uv.x * Float(width) - 0.5f, py = uv.y * Float(height) - 0.5f;
+    Float fx0 = std::floor(px), fy0 = std::floor(py);
+    int x0 = int(fx0), y0 = int(fy0);
+    Float dx = px - fx0, dy = py - fy0;
+    Float v = 0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            int x = x0 + i, y = y0 + j;
+            WrapOctahedral(&x, &y, width, height);
+            v += (i ? dx : 1 - dx) * (j ? dy : 1 - dy) * t[uint64_t(y) * uint32_t(width) + uint32_t(x)];
+        }
+    return v;
 }
 
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
@@ -104,7 +132,8 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     ls->isDelta = false;
     switch (l.kind) {
     case LightKind::Point:
-    case LightKind::Spot: {
+    case LightKind::Spot:
+    case LightKind::Goniometric: {
         Vec3f d = l.position - ctx.p;
         Float d2 = LengthSquared(d);
         if (d2 == 0) return false;
@@ -113,6 +142,10 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
         if (l.kind == LightKind::Spot) {
             Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi));
             I *= SpotFalloff(l, wLight);
+            // An IES profile on a spot light: its nadir is the spot axis (+z), C0 the frame's +x.
+            if (l.profile != NoIndex) I *= ProfileValue(l, s, Vec3f(wLight.x, wLight.y, -wLight.z));
+        } else if (l.kind == LightKind::Goniometric) {
+            I *= ProfileValue(l, s, Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi)));
         }
         ls->L = I / d2;
         ls->pdf = 1;

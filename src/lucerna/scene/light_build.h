@@ -1,5 +1,6 @@
-// Lucerna (host): light power (pbrt-v4 Light::Phi), the power light-selection CDF of
-// lights/light_sampler.h (PowerLightSampler) and the image infinite light's distributions.
+// Lucerna (host): light power (pbrt-v4 Light::Phi; goniometric and IES profiles included), the
+// power light-selection CDF of lights/light_sampler.h (PowerLightSampler) and the image infinite
+// light's distributions.
 #pragma once
 
 #include <algorithm>
@@ -11,13 +12,36 @@
 
 namespace lu {
 
+// pbrt-v4's GoniometricLight::Phi without scale and spectrum: 4 pi times the mean of the
+// one-channel equal-area table (each texel subtends 4 pi / N steradians).
+inline double ProfileIntegral(const ImageData &im, const Float *texels) {
+    double sum = 0;
+    size_t n = size_t(im.width) * im.height;
+    for (size_t i = 0; i < n; ++i) sum += texels[im.offset + i];
+    return 4 * Pi * sum / double(n);
+}
+
+// The same integral for a spot light with an IES profile: the profile times the spot falloff at
+// each texel's direction (the table's -z is the spot axis, lights.h).
+inline double ProfiledSpotIntegral(const Light &l, const ImageData &im, const Float *texels) {
+    double sum = 0;
+    for (uint32_t y = 0; y < im.height; ++y)
+        for (uint32_t x = 0; x < im.width; ++x) {
+            Vec3f w = EqualAreaSquareToSphere(Vec2f((Float(x) + 0.5f) / Float(im.width), (Float(y) + 0.5f) / Float(im.height)));
+            sum += double(texels[im.offset + uint64_t(y) * im.width + x]) * SpotFalloff(l, Vec3f(w.x, w.y, -w.z));
+        }
+    return 4 * Pi * sum / (double(im.width) * im.height);
+}
+
 // pbrt-v4's Light::Phi(lambda): emitted power at the sampled wavelengths.
 inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const SampledWavelengths &lambda) {
     SampledSpectrum spec = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
     switch (l.kind) {
     case LightKind::Point: return spec * (4 * Pi);
     case LightKind::Spot:
+        if (l.profile != NoIndex) return spec * Float(ProfiledSpotIntegral(l, s.images[l.profile], s.texels.ptr));
         return spec * (2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2));
+    case LightKind::Goniometric: return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr));
     case LightKind::Distant: return spec * (Pi * Sqr(l.sceneRadius));
     case LightKind::DiffuseArea:
         return spec * (Pi * (l.twoSided ? 2 : 1) * ShapeArea(s, s.shapes[l.shape], l.primitive));
