@@ -136,7 +136,7 @@ TEST(IESReader, ParsesTheHeaderAndEvaluatesBilinearly) {
     EXPECT_EQ(p.symmetry, IESSymmetry::Rotational);
     EXPECT_DOUBLE_EQ(p.Evaluate(0, 123), 2000);
     // Halfway between 10 and 12.5 degrees: the mean of the two tabulated values (linear in angle).
-    EXPECT_NEAR(p.Evaluate(11.25, 0), 1000 * (std::cos(Rad(10)) + std::cos(Rad(12.5))), 1e-9);
+    EXPECT_NEAR(p.Evaluate(11.25, 0), 1000 * (std::cos(Rad(10)) + std::cos(Rad(12.5))), 1e-6);
     EXPECT_EQ(p.Evaluate(95, 0), 0);   // above the tabulated range: dark
     EXPECT_NEAR(p.MaxCandela(), 2000, 1e-9);
     EXPECT_TRUE(Contains(p.Describe(), "37 vertical x 1 horizontal angles (rotationally symmetric)")) << p.Describe();
@@ -192,7 +192,8 @@ TEST(IESReader, TiltIncludeAndOlderFormats) {
     l = f.Lines();
     std::string cd = l[8];
     for (char &c : cd) if (c == ' ') c = ',';
-    l[8] = cd.substr(0, cd.size() / 2) + "\n" + cd.substr(cd.size() / 2 + 1);
+    cd[cd.find(',', cd.size() / 2)] = '\n';
+    l[8] = cd;
     EXPECT_NEAR(ParseIES(JoinLines(l), "comma.ies", "").Evaluate(60, 0), 500, 1e-6);
 }
 
@@ -212,7 +213,7 @@ TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
     ASSERT_EQ(s->lights.size(), 1u);
     SceneView v = s->View();
     const Light &l = v.lights[0];
-    EXPECT_TRUE(l.profileBilinear);
+    EXPECT_TRUE(l.profileVertices);
     // Directions all over the sphere, seams and poles of the octahedral map included.
     std::vector<Vec3f> dirs = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0},
                                {1, 1, 0.001f}, {-1, 1, -0.001f}, {0.3f, -0.2f, -0.93f}, {-0.01f, 0.01f, -1}};
@@ -226,7 +227,10 @@ TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
         double vert, hor;
         IESAnglesOfDirection(w.x, w.y, w.z, &vert, &hor);
         double want = p.Evaluate(vert, hor), got = ProfileValue(l, v, w);
-        worst = std::max(worst, std::abs(got / want - 1));
+        if (std::abs(got / want - 1) > worst) {
+            worst = std::abs(got / want - 1);
+            std::printf("table worst so far %.2e at (%g, %g, %g): vertical %g horizontal %g\n", worst, w.x, w.y, w.z, vert, hor);
+        }
     }
     EXPECT_LT(worst, 1e-3);
 }
@@ -235,8 +239,9 @@ TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
 
 // Light 0 of s at height 3 above the plane y = 0 (nadir: -y); E from SampleLi at points of the
 // plane against the analytic expression, within 1% where E is not tiny.
-void ExpectPlaneIrradiance(const HostScene &s, const std::function<double(double, double)> &intensity, double maxTheta) {
-    double worst = 0;
+void ExpectPlaneIrradiance(const HostScene &s, const std::function<double(double, double)> &intensity, double maxTheta,
+                           int minPoints = 100) {
+    double worst = 0, wx = 0, wz = 0;
     int n = 0;
     for (double x = -6; x <= 6; x += 0.75)
         for (double z = -6; z <= 6; z += 0.75) {
@@ -251,12 +256,16 @@ void ExpectPlaneIrradiance(const HostScene &s, const std::function<double(double
             double I = Candela(s, 0, p, &wi);
             double E = I * double(Dot(wi, Vec3f(0, 1, 0))) / d2;
             double want = intensity(theta, phi) * cosT / d2;
-            worst = std::max(worst, std::abs(E / want - 1));
+            if (std::abs(E / want - 1) > worst) {
+                worst = std::abs(E / want - 1);
+                wx = x;
+                wz = z;
+            }
             ++n;
         }
-    EXPECT_GT(n, 100);
+    EXPECT_GT(n, minPoints);
     EXPECT_LT(worst, 0.01);
-    std::printf("plane irradiance: %d points, worst relative error %.2e\n", n, worst);
+    std::printf("plane irradiance: %d points, worst relative error %.2e at (%g, 0, %g)\n", n, worst, wx, wz);
 }
 
 TEST(IESIrradiance, CosineLuminaireOnAPlane) {
@@ -301,9 +310,10 @@ TEST(IESIrradiance, AxisConventionC0AlongXC90AlongMinusZ) {
     EXPECT_NEAR(Candela(*s, 0, Vec3f(0, -5, -5)), 10 + 100 * std::sin(Rad(45)), 0.5);
     // The CTM turns the luminaire: rotated 90 degrees about x, its nadir (-y) becomes -z.
     auto r = LoadWorld(dir, "Rotate 90 1 0 0\nLightSource \"goniometric\" \"string filename\" \"c90.ies\"\n");
+    // Rotate 90 about x maps (x, y, z) to (x, -z, y): C90 (-z) goes to +y, C270 (+z) to -y.
     EXPECT_NEAR(Candela(*r, 0, Vec3f(0, 0, -5)), 10, 0.5);   // nadir
-    EXPECT_NEAR(Candela(*r, 0, Vec3f(0, 5, 0)), 10, 0.5);    // C270 of the rotated light (was +z)
-    EXPECT_NEAR(Candela(*r, 0, Vec3f(0, -5, 0)), 110, 0.5);  // C90 (was -z)
+    EXPECT_NEAR(Candela(*r, 0, Vec3f(0, 5, 0)), 110, 0.5);   // C90
+    EXPECT_NEAR(Candela(*r, 0, Vec3f(0, -5, 0)), 10, 0.5);   // C270
 }
 
 // A spot light with an IES profile: the nadir is the spot axis, the cone falloff multiplies.
@@ -318,7 +328,7 @@ TEST(IESIrradiance, SpotWithProfile) {
         double c = std::cos(Rad(t));
         double x = std::clamp((c - cosEnd) / (cosStart - cosEnd), 0.0, 1.0);
         return 1000 * c * x * x * (3 - 2 * x);
-    }, 48);
+    }, 48, 40);
     EXPECT_EQ(Candela(*s, 0, Vec3f(5, 0, 0)), 0);   // outside the cone
 }
 
@@ -353,7 +363,7 @@ TEST(Goniometric, ImageIntensityAlongDirections) {
     ASSERT_EQ(s->lights.size(), 1u);
     const Light &l = s->lights[0];
     EXPECT_EQ(l.kind, LightKind::Goniometric);
-    EXPECT_FALSE(l.profileBilinear);
+    EXPECT_FALSE(l.profileVertices);
     EXPECT_NEAR(l.scale * CIE_Y_integral, 2, 2e-3);   // scale / SpectrumToPhotometric(I)
     // Towards the texel centers the nearest lookup returns the texel: 2 g exactly (RGB averaged).
     for (Vec2f uv : {Vec2f(0.5f / n, 0.5f / n), Vec2f(31.5f / n, 31.5f / n), Vec2f(10.5f / n, 50.5f / n),
@@ -369,7 +379,7 @@ TEST(Goniometric, ImageIntensityAlongDirections) {
     }
     // Power: scale so that the luminous flux is "power": the mean of g is 1, so I = P / (4 pi) g.
     auto p = LoadWorld(dir, "LightSource \"goniometric\" \"string filename\" \"g.exr\" \"float power\" 100\n");
-    double k_e = ProfileIntegral(p->images[p->lights[0].profile], p->texels.data());
+    double k_e = ProfileIntegral(p->images[p->lights[0].profile], p->texels.data(), false);
     EXPECT_NEAR(k_e / (4 * kPi), 1, 2e-3);
     EXPECT_NEAR(p->lights[0].scale * CIE_Y_integral * k_e, 100, 0.05);
     EXPECT_NEAR(Candela(*p, 0, Vec3f(0, 5, 0)), 100 / (4 * kPi) * G(Vec3f(0, 1, 0)), 0.3);

@@ -187,11 +187,12 @@ struct Light {
     // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
     Vec3f boundCenter;
     Float boundRadius = -1;
-    // Goniometric (and spot with an IES profile): a one-channel n x n equal-area table of the
-    // intensity scale over the light-space sphere (images[profile]); NoIndex: none. Nearest texel
-    // as pbrt-v4 for images, bilinear for tables made from IES files (lights/lights.h).
+    // Goniometric (and spot with an IES profile): a one-channel equal-area table of the intensity
+    // scale over the light-space sphere (images[profile]); NoIndex: none. An image's n x n texels
+    // (nearest, as pbrt-v4), or for IES files (profileVertices) (n+1)^2 vertex samples,
+    // interpolated linearly (lights/lights.h, ProfileValueAt).
     uint32_t profile = NoIndex;
-    bool profileBilinear = false;
+    bool profileVertices = false;
 };
 
 // Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:

@@ -42,31 +42,37 @@ LU_INLINE Float SpotFalloff(const Light &l, const Vec3f &wLight) {
     return SmoothStep(wLight.z, l.cosFalloffEnd, l.cosFalloffStart);
 }
 
-// The intensity scale of l's profile table (Light::profile, one channel, equal-area) at the unit
-// light-space direction w: pbrt-v4's GoniometricLight::I lookup (EqualAreaSphereToSquare, the
-// nearest texel, coordinates clamped) or, for tables made from IES files (profileBilinear),
-// bilinear between texel centers with the octahedral wrap across the seams.
-LU_INLINE Float ProfileValue(const Light &l, const SceneView &s, Vec3f w) {
-    const ImageData &im = s.images[l.profile];
-    const Float *t = s.texels.ptr + im.offset;
+// The value at equal-area coordinates uv of a one-channel profile table: pbrt-v4's nearest texel
+// (GoniometricLight::I: coordinates clamped), or for a vertex table ((n+1) x (n+1) samples at
+// uv = (i, j) / n, n even: tables made from IES files) linear on the two triangles of each cell,
+// split along the diagonal parallel to the map's fold in that quadrant (|u| + |v| = 1 in
+// [-1,1]^2, the equator), so that no triangle straddles a fold (the edges and the axes are cell
+// edges): the interpolant is continuous on the sphere and second-order accurate everywhere.
+LU_INLINE Float ProfileValueAt(const ImageData &im, const Float *texels, Vec2f uv, bool vertices) {
+    const Float *t = texels + im.offset;
     int width = int(im.width), height = int(im.height);
-    Vec2f uv = EqualAreaSphereToSquare(w);
-    if (!l.profileBilinear) {
+    if (!vertices) {
         int x = Clamp(int(uv.x * Float(width)), 0, width - 1), y = Clamp(int(uv.y * Float(height)), 0, height - 1);
         return t[uint64_t(y) * uint32_t(width) + uint32_t(x)];
     }
-    Float px = uv.x * Float(width) - 0.5f, py = uv.y * Float(height) - 0.5f;
-    Float fx0 = std::floor(px), fy0 = std::floor(py);
-    int x0 = int(fx0), y0 = int(fy0);
-    Float dx = px - fx0, dy = py - fy0;
-    Float v = 0;
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-            int x = x0 + i, y = y0 + j;
-            WrapOctahedral(&x, &y, width, height);
-            v += (i ? dx : 1 - dx) * (j ? dy : 1 - dy) * t[uint64_t(y) * uint32_t(width) + uint32_t(x)];
-        }
-    return v;
+    int n = width - 1;
+    Float px = uv.x * Float(n), py = uv.y * Float(n);
+    int i = Clamp(int(std::floor(px)), 0, n - 1), j = Clamp(int(std::floor(py)), 0, n - 1);
+    Float fx = Clamp(px - Float(i), Float(0), Float(1)), fy = Clamp(py - Float(j), Float(0), Float(1));
+    const Float *row0 = t + uint64_t(j) * uint32_t(width) + uint32_t(i), *row1 = row0 + width;
+    Float v00 = row0[0], v10 = row0[1], v01 = row1[0], v11 = row1[1];
+    if ((2 * i >= n) == (2 * j >= n)) {   // fold along x + y = const: split from (1, 0) to (0, 1)
+        if (fx + fy <= 1) return v00 + fx * (v10 - v00) + fy * (v01 - v00);
+        return v11 + (1 - fx) * (v01 - v11) + (1 - fy) * (v10 - v11);
+    }
+    // fold along x - y = const: split from (0, 0) to (1, 1)
+    if (fx >= fy) return v00 + fx * (v10 - v00) + fy * (v11 - v10);
+    return v00 + fy * (v01 - v00) + fx * (v11 - v01);
+}
+
+// The intensity scale of l's profile table (Light::profile) at the unit light-space direction w.
+LU_INLINE Float ProfileValue(const Light &l, const SceneView &s, Vec3f w) {
+    return ProfileValueAt(s.images[l.profile], s.texels.ptr, EqualAreaSphereToSquare(w), l.profileVertices);
 }
 
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights

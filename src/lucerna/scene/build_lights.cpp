@@ -157,7 +157,7 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
 
 // ---- Goniometric lights and IES profiles ----
 
-// Equal-area table resolution for IES files (n x n texels of about 0.4 degrees).
+// Equal-area vertex tables of IES files: (n+1)^2 samples, cells of about 0.4 degrees.
 constexpr int kIESTableResolution = 512;
 
 // pbrt-v4's swapYZ: the goniometric light's image frame has its pole (+z) along the light's +y.
@@ -194,7 +194,7 @@ uint32_t IESProfileTable(BuildContext &ctx, const LightEntity &e, const std::str
     ctx.scene.inputFiles.push_back(path);
     IESProfile prof = ReadIES(path, loc, "the IES file of LightSource " + Quoted(e.name) + " at " + loc.ToString());
     std::vector<float> table = IESEqualAreaTable(prof, kIESTableResolution);
-    uint32_t index = AddProfileTable(ctx, table, kIESTableResolution);
+    uint32_t index = AddProfileTable(ctx, table, kIESTableResolution + 1);
     *description = Quoted(filename) + ": " + prof.Describe();
     ctx.profileTables[path] = {index, *description};
     return index;
@@ -260,11 +260,12 @@ void BuildGoniometric(BuildContext &ctx, const LightEntity &e, Light &l, std::st
     l.scale = scale / Photometric(ctx, l.spectrum);
     if (IsIESFile(filename)) {
         l.profile = IESProfileTable(ctx, e, "filename", description);
-        l.profileBilinear = true;
+        l.profileVertices = true;
     } else {
         l.profile = ImageProfileTable(ctx, e, filename, description);
     }
-    NormalizeProfilePower(ctx, p, e.loc, owner, phi_v, ProfileIntegral(ctx.scene.images[l.profile], ctx.scene.texels.data()), l);
+    NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
+                          ProfileIntegral(ctx.scene.images[l.profile], ctx.scene.texels.data(), l.profileVertices), l);
     l.renderFromLight = e.renderFromObject * SwapYZ();
     l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
 }
@@ -293,9 +294,9 @@ void BuildLights(BuildContext &ctx) {
                 // of that file at "from" (docs/lights.md).
                 l.kind = LightKind::Goniometric;
                 l.profile = IESProfileTable(ctx, e, "iesfile", &profile);
-                l.profileBilinear = true;
+                l.profileVertices = true;
                 NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
-                                      ProfileIntegral(s.images[l.profile], s.texels.data()), l);
+                                      ProfileIntegral(s.images[l.profile], s.texels.data(), true), l);
                 if (!IsFiniteMatrix(ctm.mInv))
                     Fail(e.loc, owner + ": the transformation is not invertible: the profile's directions are undefined");
                 l.renderFromLight = ctm * TranslateTransform(from) * SwapYZ();
@@ -330,9 +331,9 @@ void BuildLights(BuildContext &ctx) {
             if (p.Has("iesfile")) {
                 // Lucerna's extension: the IES profile times the cone falloff, nadir along the axis.
                 l.profile = IESProfileTable(ctx, e, "iesfile", &profile);
-                l.profileBilinear = true;
+                l.profileVertices = true;
                 NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
-                                      ProfiledSpotIntegral(l, s.images[l.profile], s.texels.data()), l);
+                                      ProfileIntegral(s.images[l.profile], s.texels.data(), true, &l), l);
             } else if (phi_v > 0) {
                 Float k_e = 2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2);
                 if (k_e > 0) l.scale *= phi_v / k_e;

@@ -349,13 +349,14 @@ void IESAnglesOfDirection(float wx, float wy, float wz, double *vertical, double
 }
 
 std::vector<float> IESEqualAreaTable(const IESProfile &profile, int n) {
-    std::vector<float> t(size_t(n) * size_t(n));
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            Vec3f w = EqualAreaSquareToSphere(Vec2f((Float(x) + 0.5f) / Float(n), (Float(y) + 0.5f) / Float(n)));
+    size_t m = size_t(n) + 1;
+    std::vector<float> t(m * m);
+    for (size_t y = 0; y < m; ++y)
+        for (size_t x = 0; x < m; ++x) {
+            Vec3f w = EqualAreaSquareToSphere(Vec2f(Float(x) / Float(n), Float(y) / Float(n)));
             double v, h;
             IESAnglesOfDirection(w.x, w.y, w.z, &v, &h);
-            t[size_t(y) * size_t(n) + size_t(x)] = float(profile.Evaluate(v, h));
+            t[y * m + x] = float(profile.Evaluate(v, h));
         }
     return t;
 }

@@ -51,9 +51,9 @@ IESProfile ParseIES(std::string_view text, const std::string &filename, const st
 // Reads and parses `path` (a missing or unreadable file: SceneError at `referencedFrom`).
 IESProfile ReadIES(const std::string &path, const FileLoc &referencedFrom, const std::string &context);
 
-// The profile as pbrt-v4's goniometric light holds its image: an n x n equal-area table (rows
-// top first) of candela values at the texel centers' directions in the goniometric light's image
-// frame. The axis convention (docs/lights.md): nadir (vertical 0) is the frame's -z, horizontal
+// The profile as a vertex table for the goniometric light: (n+1) x (n+1) candela values (rows
+// top first) at the directions of the equal-area points (i, j) / n in the goniometric light's
+// image frame (lights.h, ProfileValueAt; n even). The axis convention (docs/lights.md): nadir (vertical 0) is the frame's -z, horizontal
 // 0 its +x and horizontal 90 its -y, so that after pbrt-v4's y/z swap the luminaire hangs along
 // the light's -y with C0 along +x and C90 along -z (counterclockwise seen from above, +y).
 std::vector<float> IESEqualAreaTable(const IESProfile &profile, int n);

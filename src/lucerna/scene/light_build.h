@@ -12,25 +12,25 @@
 
 namespace lu {
 
-// pbrt-v4's GoniometricLight::Phi without scale and spectrum: 4 pi times the mean of the
-// one-channel equal-area table (each texel subtends 4 pi / N steradians).
-inline double ProfileIntegral(const ImageData &im, const Float *texels) {
+// The integral over the sphere of a profile table, without scale and spectrum: pbrt-v4's
+// GoniometricLight::Phi for images (4 pi times the mean texel: each subtends 4 pi / N sr); for a
+// vertex table, 4 pi times the mean of its interpolant (midpoint rule over the n x n cells).
+// falloff (optional): a factor of the light-space direction (a spot light's cone, whose axis is
+// the table's -z).
+inline double ProfileIntegral(const ImageData &im, const Float *texels, bool vertices, const Light *spot = nullptr) {
+    uint32_t n = vertices ? im.width - 1 : im.width;
     double sum = 0;
-    size_t n = size_t(im.width) * im.height;
-    for (size_t i = 0; i < n; ++i) sum += texels[im.offset + i];
-    return 4 * Pi * sum / double(n);
-}
-
-// The same integral for a spot light with an IES profile: the profile times the spot falloff at
-// each texel's direction (the table's -z is the spot axis, lights.h).
-inline double ProfiledSpotIntegral(const Light &l, const ImageData &im, const Float *texels) {
-    double sum = 0;
-    for (uint32_t y = 0; y < im.height; ++y)
-        for (uint32_t x = 0; x < im.width; ++x) {
-            Vec3f w = EqualAreaSquareToSphere(Vec2f((Float(x) + 0.5f) / Float(im.width), (Float(y) + 0.5f) / Float(im.height)));
-            sum += double(texels[im.offset + uint64_t(y) * im.width + x]) * SpotFalloff(l, Vec3f(w.x, w.y, -w.z));
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            Vec2f uv((Float(x) + 0.5f) / Float(n), (Float(y) + 0.5f) / Float(n));
+            double v = vertices ? ProfileValueAt(im, texels, uv, true) : texels[im.offset + uint64_t(y) * im.width + x];
+            if (spot) {
+                Vec3f w = EqualAreaSquareToSphere(uv);
+                v *= SpotFalloff(*spot, Vec3f(w.x, w.y, -w.z));
+            }
+            sum += v;
         }
-    return 4 * Pi * sum / (double(im.width) * im.height);
+    return 4 * Pi * sum / (double(n) * n);
 }
 
 // pbrt-v4's Light::Phi(lambda): emitted power at the sampled wavelengths.
@@ -39,9 +39,11 @@ inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const Sample
     switch (l.kind) {
     case LightKind::Point: return spec * (4 * Pi);
     case LightKind::Spot:
-        if (l.profile != NoIndex) return spec * Float(ProfiledSpotIntegral(l, s.images[l.profile], s.texels.ptr));
+        if (l.profile != NoIndex)
+            return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr, l.profileVertices, &l));
         return spec * (2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2));
-    case LightKind::Goniometric: return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr));
+    case LightKind::Goniometric:
+        return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr, l.profileVertices));
     case LightKind::Distant: return spec * (Pi * Sqr(l.sceneRadius));
     case LightKind::DiffuseArea:
         return spec * (Pi * (l.twoSided ? 2 : 1) * ShapeArea(s, s.shapes[l.shape], l.primitive));
