@@ -18,6 +18,7 @@
 #include "lucerna/backend/cpu/cpu_render.h"
 #include "lucerna/image/image.h"
 #include "lucerna/render/distributed.h"
+#include "lucerna/render/rejected_sample.h"
 #include "lucerna/scene/builder.h"
 
 namespace lu::app {
@@ -190,6 +191,10 @@ int RunRender(const RenderArgs &a) {
         }
     }
     std::printf("%s\n", SummaryLine(prep, out).c_str());
+    if (out.stats.rejected > 0)
+        std::fprintf(stderr, "lucerna: warning: %s kept off the film; the first %s\n",
+                     out.stats.rejected == 1 ? "1 sample was" : (std::to_string(out.stats.rejected) + " samples were").c_str(),
+                     DescribeRejectedSample(*prep.scene, out.stats.firstRejected).c_str());
     if (interrupted) {
         std::string list;
         for (const std::string &w : written) list += (list.empty() ? "" : ", ") + w;

@@ -17,6 +17,7 @@
 #include "lucerna/backend/cuda/device_buffer.h"
 #endif
 #include "lucerna/image/image.h"
+#include "lucerna/render/rejected_sample.h"
 #include "lucerna/render/distributed.h"
 
 namespace lu::app {
@@ -231,7 +232,13 @@ std::string StatsJson(const Prepared &prep, const RenderOutcome &o) {
     double sec = std::max(1e-9, s.seconds);
     JsonObject settings, first, j;
     for (const SettingInfo &info : RenderSettingInfos()) settings.Add(info.name, RenderSettingValue(rs, info.name));
-    first.Add("x", s.firstRejectedX).Add("y", s.firstRejectedY).Add("depth", s.firstRejectedDepth);
+    const RejectedSample &fr = s.firstRejected;
+    first.Add("x", fr.x).Add("y", fr.y).Add("depth", fr.depth);
+    if (fr.Valid())
+        first.Add("cause", RejectCauseName(fr.cause))
+            .Add("value", BadValueName(fr.badValue))
+            .Add("source", RejectedSource(*prep.scene, fr))
+            .Add("message", DescribeRejectedSample(*prep.scene, fr));
     j.Add("scene", prep.sceneFile)
         .Add("integrator", IntegratorName(rs.integrator))
         .Add("device", prep.deviceName)

@@ -135,6 +135,30 @@ TEST(Cli, InterruptThenResumeIsBitIdentical) {
 }
 
 // Every subcommand is linked and registered (apps/commands.cpp has no stubs).
+// Rejected samples are explained on stderr and in --stats-json, not only counted: here a light
+// so bright (finite, 1e38) that the film's XYZ value overflows.
+TEST(Cli, RejectedSamplesAreExplainedInWords) {
+    std::string dir = TempDir("cli_rejected");
+    std::ofstream(dir + "/bright.pbrt")
+        << "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 40 ]\n"
+           "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\nWorldBegin\nAttributeBegin\n"
+           "AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ] \"float scale\" 1e38\n"
+           "Shape \"sphere\" \"float radius\" [ 0.5 ]\nAttributeEnd\n";
+    Background render({"render", dir + "/bright.pbrt", "--spp", "2", "-o", dir + "/b.exr", "--stats-json", dir + "/b.json"});
+    ProcessResult r = render.Finish();
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("samples were kept off the film; the first at pixel ("), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("an infinite value at the film"), std::string::npos) << r.output;
+    std::string js = FileBytes(dir + "/b.json");
+    EXPECT_NE(js.find("\"cause\": \"film\""), std::string::npos) << js;
+    EXPECT_NE(js.find("\"value\": \"an infinite value\""), std::string::npos) << js;
+    // A clean render says nothing of the kind.
+    Background clean({"render", WriteScene(dir, 8, 1), "-o", dir + "/c.exr"});
+    ProcessResult c = clean.Finish();
+    EXPECT_EQ(c.exitCode, 0);
+    EXPECT_EQ(c.output.find("kept off the film"), std::string::npos) << c.output;
+}
+
 TEST(Cli, HelpListsEveryCommand) {
     ProcessResult r = RunProcess({kBin, "--help"});
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -1,8 +1,7 @@
 // Lucerna tests: generated scenes, ray sets and an Embree reference for the BVH tests
-// (tests/geometry/bvh_test.cpp and the CPU/GPU agreement tests in tests/gpu). Header-only.
+// (tests/geometry/bvh_test.cpp and the CPU/GPU agreement tests in tests/gpu). Header-only; the
+// reference is the CPU backend's EmbreeScene.
 #pragma once
-
-#include <embree3/rtcore.h>
 
 #include <cmath>
 #include <cstdio>
@@ -13,8 +12,11 @@
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
 #include "lucerna/accel/bvh_build.h"
+#include "lucerna/backend/cpu/embree_scene.h"
 #include "lucerna/geometry/bvh_traverse.h"
 #include "lucerna/geometry/shapes.h"
+#include "lucerna/scene/builder.h"
+#include "support/test_transforms.h"
 
 namespace lu::test {
 
@@ -49,50 +51,10 @@ struct Pcg32 {
     }
 };
 
-// ---- Transforms ----
-
-inline Transform MakeTransform(const Matrix4 &m) {
-    Matrix4 inv;
-    Inverse(m, &inv);
-    return Transform(m, inv);
-}
-inline Transform Translate(const Vec3f &t) {
-    Matrix4 m;
-    m.m[0][3] = t.x; m.m[1][3] = t.y; m.m[2][3] = t.z;
-    return MakeTransform(m);
-}
-inline Transform Scale(Float x, Float y, Float z) {
-    Matrix4 m;
-    m.m[0][0] = x; m.m[1][1] = y; m.m[2][2] = z;
-    return MakeTransform(m);
-}
-inline Transform Rotate(Float degrees, Vec3f axis) {
-    axis = Normalize(axis);
-    Float s = std::sin(Radians(degrees)), c = std::cos(Radians(degrees));
-    Matrix4 m;
-    m.m[0][0] = axis.x * axis.x + (1 - axis.x * axis.x) * c;
-    m.m[0][1] = axis.x * axis.y * (1 - c) - axis.z * s;
-    m.m[0][2] = axis.x * axis.z * (1 - c) + axis.y * s;
-    m.m[1][0] = axis.x * axis.y * (1 - c) + axis.z * s;
-    m.m[1][1] = axis.y * axis.y + (1 - axis.y * axis.y) * c;
-    m.m[1][2] = axis.y * axis.z * (1 - c) - axis.x * s;
-    m.m[2][0] = axis.x * axis.z * (1 - c) - axis.y * s;
-    m.m[2][1] = axis.y * axis.z * (1 - c) + axis.x * s;
-    m.m[2][2] = axis.z * axis.z + (1 - axis.z * axis.z) * c;
-    return MakeTransform(m);
-}
-
 // ---- A scene owning its arrays ----
 
-struct OwnedScene {
-    std::vector<Vec3f> positions;
-    std::vector<uint32_t> indices;
-    std::vector<TriangleMesh> meshes;
-    std::vector<Sphere> spheres;
-    std::vector<Disk> disks;
-    std::vector<Shape> shapes;
-    Bounds3f bounds;
-
+// A HostScene filled shape by shape (bounds kept up to date); View() is HostScene's.
+struct OwnedScene : HostScene {
     void AddMesh(const std::vector<Vec3f> &p, const std::vector<uint32_t> &idx) {
         TriangleMesh m;
         m.firstVertex = uint32_t(positions.size());
@@ -104,9 +66,9 @@ struct OwnedScene {
         for (const Vec3f &v : p) bounds.Expand(v);
         Shape s;
         s.kind = ShapeKind::Triangles;
-        s.index = uint32_t(meshes.size());
+        s.index = uint32_t(triangleMeshes.size());
         s.primitiveCount = m.triangleCount;
-        meshes.push_back(m);
+        triangleMeshes.push_back(m);
         shapes.push_back(s);
     }
     void AddSphere(const Transform &renderFromObject, Float radius) {
@@ -121,28 +83,12 @@ struct OwnedScene {
         bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
     }
     void AddDisk(const Transform &renderFromObject, Float height, Float radius, Float innerRadius) {
-        Disk d;
-        d.renderFromObject = renderFromObject;
-        d.height = height;
-        d.radius = radius;
-        d.innerRadius = innerRadius;
         Shape s;
         s.kind = ShapeKind::Disk;
         s.index = uint32_t(disks.size());
-        disks.push_back(d);
+        disks.push_back(Disk{renderFromObject, height, radius, innerRadius});
         shapes.push_back(s);
         bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
-    }
-    SceneView View() const {
-        SceneView v;
-        v.positions = {positions.data(), uint32_t(positions.size())};
-        v.indices = {indices.data(), uint32_t(indices.size())};
-        v.triangleMeshes = {meshes.data(), uint32_t(meshes.size())};
-        v.spheres = {spheres.data(), uint32_t(spheres.size())};
-        v.disks = {disks.data(), uint32_t(disks.size())};
-        v.shapes = {shapes.data(), uint32_t(shapes.size())};
-        v.bounds = bounds;
-        return v;
     }
 };
 
@@ -289,137 +235,22 @@ inline std::vector<Ray> SegmentRays(const Bounds3f &b, int count, uint64_t seed)
     return rays;
 }
 
-// ---- Embree reference (built-in triangles, user geometry for spheres and disks) ----
+// ---- Embree reference: the CPU backend's own EmbreeScene (Embree's triangles, user geometry for
+// spheres and disks), behind the names the BVH tests use ----
 
 class EmbreeReference {
   public:
-    explicit EmbreeReference(const SceneView &scene) : scene_(scene) {
-        device_ = rtcNewDevice(nullptr);
-        rtc_ = rtcNewScene(device_);
-        rtcSetSceneFlags(rtc_, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(rtc_, RTC_BUILD_QUALITY_HIGH);
-        users_.reserve(scene.shapes.size);
-        for (uint32_t s = 0; s < scene.shapes.size; ++s) {
-            const Shape &shape = scene.shapes[s];
-            RTCGeometry g;
-            if (shape.kind == ShapeKind::Triangles) {
-                const TriangleMesh &m = scene.triangleMeshes[shape.index];
-                g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-                float *v = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                        3 * sizeof(float), m.vertexCount));
-                for (uint32_t i = 0; i < m.vertexCount; ++i) {
-                    const Vec3f &p = scene.positions[m.firstVertex + i];
-                    v[3 * i] = p.x; v[3 * i + 1] = p.y; v[3 * i + 2] = p.z;
-                }
-                unsigned *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-                    g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangleCount));
-                for (uint32_t i = 0; i < 3 * m.triangleCount; ++i) idx[i] = scene.indices[m.firstIndex + i];
-            } else {
-                g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-                users_.push_back(User{&scene_, s});
-                rtcSetGeometryUserPrimitiveCount(g, 1);
-                rtcSetGeometryUserData(g, &users_.back());
-                rtcSetGeometryBoundsFunction(g, &Bounds, nullptr);
-                rtcSetGeometryIntersectFunction(g, &Intersect);
-                rtcSetGeometryOccludedFunction(g, &Occluded);
-            }
-            rtcCommitGeometry(g);
-            rtcAttachGeometryByID(rtc_, g, s);
-            rtcReleaseGeometry(g);
-        }
-        rtcCommitScene(rtc_);
-    }
-    ~EmbreeReference() {
-        rtcReleaseScene(rtc_);
-        rtcReleaseDevice(device_);
-    }
-    EmbreeReference(const EmbreeReference &) = delete;
-    EmbreeReference &operator=(const EmbreeReference &) = delete;
-
+    explicit EmbreeReference(const SceneView &scene) : scene_(scene), embree_(scene_) {}
     HitRecord Closest(const Ray &ray) const {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        RTCRayHit rh = ToRtc(ray);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(rtc_, &ctx, &rh);
         HitRecord h;
-        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            h.t = rh.ray.tfar;
-            h.shape = rh.hit.geomID;
-            h.primitive = rh.hit.primID;
-            h.b1 = rh.hit.u;
-            h.b2 = rh.hit.v;
-        }
+        if (!embree_.Intersect(ray, &h)) h = HitRecord();
         return h;
     }
-    bool Occluded(const Ray &ray) const {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        RTCRayHit rh = ToRtc(ray);
-        rtcOccluded1(rtc_, &ctx, &rh.ray);
-        return rh.ray.tfar < 0;
-    }
+    bool Occluded(const Ray &ray) const { return embree_.Occluded(ray); }
 
   private:
-    struct User {
-        const SceneView *scene;
-        uint32_t shape;
-    };
-    static RTCRayHit ToRtc(const Ray &ray) {
-        RTCRayHit rh{};
-        rh.ray.org_x = ray.o.x; rh.ray.org_y = ray.o.y; rh.ray.org_z = ray.o.z;
-        rh.ray.dir_x = ray.d.x; rh.ray.dir_y = ray.d.y; rh.ray.dir_z = ray.d.z;
-        rh.ray.tnear = 0;
-        // Our segments are open at tMax; Embree's is closed: step one float below.
-        rh.ray.tfar = std::isinf(ray.tMax) ? ray.tMax : std::nextafter(ray.tMax, 0.0f);
-        rh.ray.mask = 0xffffffffu;
-        rh.ray.flags = 0;
-        rh.ray.time = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        return rh;
-    }
-    static bool IntersectUser(const User &u, const Ray &ray, Float tMax, Float *t) {
-        const Shape &shape = u.scene->shapes[u.shape];
-        if (shape.kind == ShapeKind::Sphere) return IntersectSphere(u.scene->spheres[shape.index], ray, tMax, t);
-        return IntersectDisk(u.scene->disks[shape.index], ray, tMax, t);
-    }
-    static void Bounds(const RTCBoundsFunctionArguments *args) {
-        const User &u = *static_cast<const User *>(args->geometryUserPtr);
-        Bounds3f b = PrimitiveBounds(*u.scene, u.shape, 0);
-        *args->bounds_o = RTCBounds{b.pMin.x, b.pMin.y, b.pMin.z, 0, b.pMax.x, b.pMax.y, b.pMax.z, 0};
-    }
-    static void Intersect(const RTCIntersectFunctionNArguments *args) {
-        if (args->N != 1 || !args->valid[0]) return;
-        const User &u = *static_cast<const User *>(args->geometryUserPtr);
-        RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
-        Ray ray;
-        ray.o = Vec3f(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z);
-        ray.d = Vec3f(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
-        // tfar is closed in Embree, tMax open here: allow t == tfar.
-        Float t;
-        if (!IntersectUser(u, ray, std::nextafter(rh->ray.tfar, Infinity), &t)) return;
-        rh->ray.tfar = t;
-        rh->hit.geomID = args->geomID;
-        rh->hit.primID = args->primID;
-        rh->hit.u = rh->hit.v = 0;
-        rh->hit.instID[0] = args->context->instID[0];
-    }
-    static void Occluded(const RTCOccludedFunctionNArguments *args) {
-        if (args->N != 1 || !args->valid[0]) return;
-        const User &u = *static_cast<const User *>(args->geometryUserPtr);
-        RTCRay *r = reinterpret_cast<RTCRay *>(args->ray);
-        Ray ray;
-        ray.o = Vec3f(r->org_x, r->org_y, r->org_z);
-        ray.d = Vec3f(r->dir_x, r->dir_y, r->dir_z);
-        Float t;
-        if (IntersectUser(u, ray, std::nextafter(r->tfar, Infinity), &t)) r->tfar = -Infinity;
-    }
-
-    SceneView scene_;
-    RTCDevice device_ = nullptr;
-    RTCScene rtc_ = nullptr;
-    std::vector<User> users_;
+    SceneView scene_;   // EmbreeScene keeps a pointer to the view
+    EmbreeScene embree_;
 };
 
 // ---- Comparing hit lists ----

@@ -181,9 +181,9 @@ TEST(GpuRender, NanGuardRejectsAndCounts) {
     EXPECT_GT(sg.rejected, 0u);
     EXPECT_LT(sg.rejected, uint64_t(24 * 24 * 4));
     EXPECT_NEAR(double(sg.rejected), double(sc.rejected), 0.02 * sc.rejected + 4);
-    EXPECT_NEAR(sg.firstRejectedX, sc.firstRejectedX, 1);
-    EXPECT_NEAR(sg.firstRejectedY, sc.firstRejectedY, 1);
-    EXPECT_GE(sg.firstRejectedDepth, 1);
+    EXPECT_NEAR(sg.firstRejected.x, sc.firstRejected.x, 1);
+    EXPECT_NEAR(sg.firstRejected.y, sc.firstRejected.y, 1);
+    EXPECT_GE(sg.firstRejected.depth, 1);
     Image img = fg.Resolve(scene->View().film);
     EXPECT_TRUE(test::AllFinite(img));
     EXPECT_NEAR(img.At(0, 0, 1), 1.0f, 0.02f);

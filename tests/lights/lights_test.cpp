@@ -9,9 +9,11 @@
 
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/lights/lights.h"
+#include "lucerna/scene/builder.h"
 #include "lucerna/scene/light_build.h"
 #include "lucerna/spectra/registry.h"
 #include "support/test_support.h"
+#include "support/test_transforms.h"
 
 namespace lu {
 namespace {
@@ -23,69 +25,21 @@ Span<T> SpanOf(const std::vector<T> &v) {
     return {v.data(), uint32_t(v.size())};
 }
 
-Transform Translate(Vec3f t) {
-    Matrix4 m, mi;
-    m.m[0][3] = t.x; m.m[1][3] = t.y; m.m[2][3] = t.z;
-    mi.m[0][3] = -t.x; mi.m[1][3] = -t.y; mi.m[2][3] = -t.z;
-    return Transform(m, mi);
-}
+using test::Rotate;
+using test::Translate;
 
-// Rotation by angle (radians) about a unit axis.
-Transform Rotate(Float angle, Vec3f a) {
-    a = Normalize(a);
-    Float s = std::sin(angle), c = std::cos(angle);
-    Matrix4 m;
-    m.m[0][0] = a.x * a.x + (1 - a.x * a.x) * c;
-    m.m[0][1] = a.x * a.y * (1 - c) - a.z * s;
-    m.m[0][2] = a.x * a.z * (1 - c) + a.y * s;
-    m.m[1][0] = a.x * a.y * (1 - c) + a.z * s;
-    m.m[1][1] = a.y * a.y + (1 - a.y * a.y) * c;
-    m.m[1][2] = a.y * a.z * (1 - c) - a.x * s;
-    m.m[2][0] = a.x * a.z * (1 - c) - a.y * s;
-    m.m[2][1] = a.y * a.z * (1 - c) + a.x * s;
-    m.m[2][2] = a.z * a.z + (1 - a.z * a.z) * c;
-    return Transform(m, Transpose(m));
-}
-
-struct TestScene {
-    std::vector<Vec3f> positions, normals;
-    std::vector<Vec2f> uvs;
-    std::vector<uint32_t> indices;
-    std::vector<TriangleMesh> meshes;
-    std::vector<Sphere> spheres;
-    std::vector<Disk> disks;
-    std::vector<Shape> shapes;
-    std::vector<Light> lights;
-    std::vector<Float> lightCdf;
-    std::vector<uint32_t> infinite;
-    std::vector<ImageData> images;
-    std::vector<Float> texels;
-    std::vector<Distribution2D> dists;
-    std::vector<Float> distData;
-    std::vector<Float> spectra;  // table 0: constant 1 (the "illuminant")
+// A HostScene filled by hand, with a constant spectrum as table 0 (the "illuminant") and an
+// optional toy RGB-to-spectrum table in place of the registry's tables.
+struct TestScene : HostScene {
+    std::vector<Float> constantSpectra;  // table 0: constant 1
     std::vector<Float> rgbCoeffs, zNodes;
     uint32_t rgbRes = 0;
 
-    TestScene() { spectra.assign(TabulatedSpectrumSize, 1.f); }
+    TestScene() { constantSpectra.assign(TabulatedSpectrumSize, 1.f); }
 
     SceneView View() const {
-        SceneView s;
-        s.positions = SpanOf(positions);
-        s.normals = SpanOf(normals);
-        s.uvs = SpanOf(uvs);
-        s.indices = SpanOf(indices);
-        s.triangleMeshes = SpanOf(meshes);
-        s.spheres = SpanOf(spheres);
-        s.disks = SpanOf(disks);
-        s.shapes = SpanOf(shapes);
-        s.lights = SpanOf(lights);
-        s.lightCdf = SpanOf(lightCdf);
-        s.infiniteLights = SpanOf(infinite);
-        s.images = SpanOf(images);
-        s.texels = SpanOf(texels);
-        s.distributions2D = SpanOf(dists);
-        s.distData = SpanOf(distData);
-        s.spectra = {spectra.data(), uint32_t(spectra.size() / TabulatedSpectrumSize)};
+        SceneView s = HostScene::View();
+        s.spectra = {constantSpectra.data(), uint32_t(constantSpectra.size() / TabulatedSpectrumSize)};
         s.rgbToSpecCoeffs = SpanOf(rgbCoeffs);
         s.rgbToSpecZNodes = SpanOf(zNodes);
         s.rgbToSpecRes = rgbRes;
@@ -106,10 +60,10 @@ struct TestScene {
             m.normalOffset = uint32_t(normals.size());
             normals.insert(normals.end(), {*vertexNormal, *vertexNormal, *vertexNormal});
         }
-        meshes.push_back(m);
+        triangleMeshes.push_back(m);
         Shape s;
         s.kind = ShapeKind::Triangles;
-        s.index = uint32_t(meshes.size() - 1);
+        s.index = uint32_t(triangleMeshes.size() - 1);
         s.primitiveCount = 1;
         shapes.push_back(s);
         return uint32_t(shapes.size() - 1);
@@ -161,10 +115,10 @@ struct TestScene {
         l.kind = LightKind::ImageInfinite;
         l.image = uint32_t(images.size() - 1);
         l.renderFromLight = renderFromLight;
-        l.distribution = BuildImageInfiniteDistributions(tex.data(), res, res, channels, dists, distData);
+        l.distribution = BuildImageInfiniteDistributions(tex.data(), res, res, channels, distributions2D, distData);
         l.sceneRadius = 10;
         lights.push_back(l);
-        infinite.push_back(uint32_t(lights.size() - 1));
+        infiniteLights.push_back(uint32_t(lights.size() - 1));
         return uint32_t(lights.size() - 1);
     }
 };
@@ -310,7 +264,7 @@ TEST(TriangleLight, HugeTriangleUsesUniformAreaSampling) {
     uint32_t li = ts.AddAreaLight(sh, 1.f);
     SceneView s = ts.View();
     LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
-    ASSERT_GT(TriangleSolidAngle(GetTriangle(s, ts.meshes[0], 0), ctx.p), MaxSphericalSampleArea);
+    ASSERT_GT(TriangleSolidAngle(GetTriangle(s, ts.triangleMeshes[0], 0), ctx.p), MaxSphericalSampleArea);
     // (b1, b2 / (1 - b1)) has density 2 (1 - b1) on the unit square.
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> U(0, 1);
@@ -449,7 +403,7 @@ TEST(SphereLight, SamplingMatchesPdfOutsideAndInside) {
     for (const Case &c : cases) {
         SCOPED_TRACE(c.what);
         TestScene ts;
-        uint32_t sh = ts.AddSphere(Translate(c.center) * Rotate(0.7f, Vec3f(1, 1, 0)), c.r);
+        uint32_t sh = ts.AddSphere(Translate(c.center) * Rotate(Degrees(0.7f), Vec3f(1, 1, 0)), c.r);
         uint32_t li = ts.AddAreaLight(sh, 1.f, c.inside);  // seen from inside: two-sided
         SceneView s = ts.View();
         LightSampleContext ctx{c.p, c.n, c.n};
@@ -502,7 +456,7 @@ TEST(SphereLight, LMatchesIntersectedPoint) {
 TEST(DiskLight, SamplingMatchesPdfAndIrradiance) {
     TestScene ts;
     // Disk of radius 0.8 at z = 2, facing down (rotated by pi about x).
-    uint32_t sh = ts.AddDisk(Translate({0.2f, 0, 2}) * Rotate(Pi, Vec3f(1, 0, 0)), 0.8f);
+    uint32_t sh = ts.AddDisk(Translate({0.2f, 0, 2}) * Rotate(180, Vec3f(1, 0, 0)), 0.8f);
     uint32_t li = ts.AddAreaLight(sh, 1.5f);
     SceneView s = ts.View();
     LightSampleContext ctx{{0.2f, 0, 0}, {0, 0, 1}, {0, 0, 1}};
@@ -557,7 +511,7 @@ std::vector<float> SyntheticEnvMap(int res, int channels) {
 
 TEST(ImageInfiniteLight, SamplingMatchesPdfBothDistributions) {
     TestScene ts;
-    uint32_t li = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Rotate(0.9f, Vec3f(0.3f, 1, 0.2f)));
+    uint32_t li = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Rotate(Degrees(0.9f), Vec3f(0.3f, 1, 0.2f)));
     SceneView s = ts.View();
     LightSampleContext ctx{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (bool incomplete : {false, true}) {
@@ -589,7 +543,7 @@ TEST(LightSampling, ChiSquareRejectsWrongPdfs) {
     }
     {
         TestScene ts;
-        uint32_t li = ts.AddAreaLight(ts.AddDisk(Translate({0.2f, 0, 2}) * Rotate(Pi, Vec3f(1, 0, 0)), 0.8f), 1.5f);
+        uint32_t li = ts.AddAreaLight(ts.AddDisk(Translate({0.2f, 0, 2}) * Rotate(180, Vec3f(1, 0, 0)), 0.8f), 1.5f);
         SceneView s = ts.View();
         LightSampleContext ctx{{0.2f, 0, 0}, {0, 0, 1}, {0, 0, 1}};
         Float cosCap = 1 - 1.25f * (1 - 2 / std::sqrt(4 + Sqr(0.8f)));
@@ -600,7 +554,7 @@ TEST(LightSampling, ChiSquareRejectsWrongPdfs) {
     }
     {
         TestScene ts;
-        uint32_t li = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Rotate(0.9f, Vec3f(0.3f, 1, 0.2f)));
+        uint32_t li = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Rotate(Degrees(0.9f), Vec3f(0.3f, 1, 0.2f)));
         uint32_t unrotated = ts.AddImageLight(SyntheticEnvMap(8, 3), 8, 3, Transform());
         SceneView s = ts.View();
         LightSampleContext ctx{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -633,7 +587,7 @@ TEST(ImageInfiniteLight, LeMatchesTexelsAndSample) {
     TestScene ts;
     int res = 8;
     std::vector<float> tex = SyntheticEnvMap(res, 3);
-    Transform rot = Rotate(0.4f, Vec3f(1, 0, 0));
+    Transform rot = Rotate(Degrees(0.4f), Vec3f(1, 0, 0));
     uint32_t li = ts.AddImageLight(tex, res, 3, rot);
     ts.lights[li].scale = 1.5f;
     SceneView s = ts.View();
@@ -670,7 +624,7 @@ TEST(PointSpotDistant, RadianceAndFalloff) {
     sp.kind = LightKind::Spot;
     sp.spectrum = Spectrum::Const(1);
     sp.position = Vec3f(0, 0, 0);
-    sp.renderFromLight = Rotate(Pi / 2, Vec3f(0, 1, 0));
+    sp.renderFromLight = Rotate(90, Vec3f(0, 1, 0));
     sp.cosFalloffStart = std::cos(Radians(20));
     sp.cosFalloffEnd = std::cos(Radians(30));
     ts.lights.push_back(sp);

@@ -63,9 +63,9 @@ TEST(PassDriver, RendersEachPassOnceInOrder) {
     EXPECT_EQ(st.rays, 50u);
     EXPECT_DOUBLE_EQ(film.xyzw[0], 1 + 2 + 3 + 4 + 5);
     EXPECT_EQ(st.rejected, 2u);
-    EXPECT_EQ(st.firstRejectedX, 1);   // the smaller key of the two
-    EXPECT_EQ(st.firstRejectedY, 1);
-    EXPECT_EQ(st.firstRejectedDepth, 2);
+    EXPECT_EQ(st.firstRejected.x, 1);   // the smaller key of the two
+    EXPECT_EQ(st.firstRejected.y, 1);
+    EXPECT_EQ(st.firstRejected.depth, 2);
     EXPECT_FALSE(st.interrupted);
 }
 

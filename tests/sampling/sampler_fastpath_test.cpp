@@ -39,13 +39,13 @@ uint32_t RefFastOwen(uint32_t v, uint32_t seed) {
     return RefReverseBits32(v);
 }
 
+// Reference: keep the 24 leading significant bits of v (what a float holds exactly), found by a
+// plain scan for the highest set bit, then scale by 2^-32.
 float RefUInt32ToUnitFloat(uint32_t v) {
-    uint32_t m = v | (v >> 1);
-    m |= m >> 2;
-    m |= m >> 4;
-    m |= m >> 8;
-    m |= m >> 16;
-    return float(v & ~(m >> 24)) * 0x1p-32f;
+    int top = 31;
+    while (top >= 0 && ((v >> top) & 1u) == 0) --top;
+    if (top >= 24) v &= ~((1u << (top - 23)) - 1u);
+    return float(v) * 0x1p-32f;
 }
 
 int RefPermuteBase4Digit(int p, int digit) {

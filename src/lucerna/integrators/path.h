@@ -51,6 +51,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             Vec3f pScatter;
             MediumEvent ev = SampleMediumSegment(scene, medium, ray, found ? hit.t : Infinity, lambda, sampler, depth,
                                                  ps.maxDepth, beta, r, L, &pScatter);
+            NoteBadValue(st, L, RejectCause::Medium, medium, depth);
             if (ev == MediumEvent::Terminated) break;
             if (ev == MediumEvent::Scattered) {
                 ++depth;
@@ -61,11 +62,15 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 VertexMedia vm;
                 vm.medium = medium;
                 vm.r = &r;
-                if (ps.strategy != LightStrategy::BSDFOnly)
-                    L += beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st, ps.strategy);
+                if (ps.strategy != LightStrategy::BSDFOnly) {
+                    SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st, ps.strategy);
+                    NoteBadValue(st, c, RejectCause::Medium, medium, depth);
+                    L += c;
+                }
                 SamplePhaseDirection(pScatter, wo, g, sampler, prev, ray);
                 r.l = r.u;
                 if (!beta.IsFinite()) {
+                    NoteBadValue(st, beta, RejectCause::Medium, medium, depth);
                     st.invalid = true;
                     break;
                 }
@@ -80,15 +85,20 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 SampledSpectrum Le = InfiniteLightLe(scene.lights[li], scene, Normalize(ray.d), lambda);
                 if (Le.IsBlack()) continue;
                 Vec3f wi = Normalize(ray.d);
-                L += beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps, rPath, lambda, tracer);
+                SampledSpectrum c = beta * Le * EmitterHitWeight(prev, scene, li, wi, prev.ctx.p + wi, -wi, true, ps, rPath, lambda, tracer);
+                NoteBadValue(st, c, RejectCause::Emission, li, depth);
+                L += c;
             }
             break;
         }
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
         if (si.areaLight != NoIndex) {
             SampledSpectrum Le = AreaLightL(scene.lights[si.areaLight], scene, si.p, si.n, si.uv, si.wo, lambda);
-            if (!Le.IsBlack())
-                L += beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, rPath, lambda, tracer);
+            if (!Le.IsBlack()) {
+                SampledSpectrum c = beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, rPath, lambda, tracer);
+                NoteBadValue(st, c, RejectCause::Emission, si.areaLight, depth);
+                L += c;
+            }
         }
         const Shape &shape = scene.shapes[si.shape];
         BSDF bsdf;
@@ -112,6 +122,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         if (t != DirectTechnique::None) {
             SampledSpectrum c = beta * Ld;
             if (t == DirectTechnique::Regularized) st.regEnergy += c.Average();
+            NoteBadValue(st, c, RejectCause::Direct, si.material, depth);
             L += c;
         }
         // ---- BSDF sampling ----
@@ -129,7 +140,8 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             if (sampler.Get1D() < q) break;
             beta /= 1 - q;
         }
-        if (!beta.IsFinite()) {   // a NaN or Inf from a material or light: reject the sample, do not hide it
+        if (!beta.IsFinite()) {   // a NaN or Inf from a material: reject the sample, do not hide it
+            NoteBadValue(st, beta, RejectCause::Scatter, si.material, depth);
             st.invalid = true;
             break;
         }
@@ -177,7 +189,12 @@ LU_HD void RenderPixelSample(int x, int y, uint32_t pass, const Sampler &base, c
     c.Add(st);
     if (!WriteFilmSample(cs.L, cs.lambda, cs.filterWeight, scene, xyzw) || st.invalid) {
         xyzw[0] = xyzw[1] = xyzw[2] = xyzw[3] = 0;
-        c.Reject(RejectedSampleKey(x, y, scene.film.width, cs.depth));
+        if (st.cause == RejectCause::None) {   // fine on the way, not at the film
+            st.cause = RejectCause::Film;
+            st.causeDepth = cs.depth;
+            if (!FindBadValue(cs.L, &st.badValue)) st.badValue = BadValue::Infinite;   // XYZ overflow or filter weight
+        }
+        c.Reject(RejectedSampleKey(x, y, scene.film.width, st.causeDepth, st.cause, st.badValue, st.causeEntity));
     }
 }
 

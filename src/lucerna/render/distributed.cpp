@@ -262,16 +262,17 @@ void ReduceSums(double *v, size_t n) {
 
 // The statistics of every rank merged into rank 0's (seconds and buildSeconds: the maximum).
 RenderStats MergeStats(const RenderStats &s, int width) {
-    uint64_t sums[6] = {s.samples, s.rays, s.shadowRays, s.regConnections, s.rejected, s.passesThisRun};
+    uint64_t sums[7] = {s.samples, s.rays, s.shadowRays, s.regConnections, s.rejected, s.passesThisRun, s.mneeConnections};
     double dsums[2] = {s.regEnergy, s.totalEnergy};
     double maxes[2] = {s.seconds, s.buildSeconds};
-    // The first rejected sample: the smallest (pixel, depth) key over the ranks.
-    uint64_t key = s.rejected == 0 || s.firstRejectedX < 0
+    // The first rejected sample: the smallest (pixel, depth) key over the ranks, with its cause.
+    const RejectedSample &f = s.firstRejected;
+    uint64_t key = s.rejected == 0 || !f.Valid()
                        ? ~0ull
-                       : RejectedSampleKey(s.firstRejectedX, s.firstRejectedY, width, s.firstRejectedDepth);
-    uint64_t outSums[6] = {}, outKey = ~0ull;
+                       : RejectedSampleKey(f.x, f.y, width, f.depth, f.cause, f.badValue, f.entity);
+    uint64_t outSums[7] = {}, outKey = ~0ull;
     double outD[2] = {}, outMax[2] = {};
-    Check(MPI_Reduce(sums, outSums, 6, MPI_UINT64_T, MPI_SUM, 0, gSession.data), "MPI_Reduce (stats)");
+    Check(MPI_Reduce(sums, outSums, 7, MPI_UINT64_T, MPI_SUM, 0, gSession.data), "MPI_Reduce (stats)");
     Check(MPI_Reduce(dsums, outD, 2, MPI_DOUBLE, MPI_SUM, 0, gSession.data), "MPI_Reduce (stats)");
     Check(MPI_Reduce(maxes, outMax, 2, MPI_DOUBLE, MPI_MAX, 0, gSession.data), "MPI_Reduce (stats)");
     Check(MPI_Reduce(&key, &outKey, 1, MPI_UINT64_T, MPI_MIN, 0, gSession.data), "MPI_Reduce (stats)");
@@ -287,13 +288,8 @@ RenderStats MergeStats(const RenderStats &s, int width) {
     m.totalEnergy = outD[1];
     m.seconds = outMax[0];
     m.buildSeconds = outMax[1];
-    m.firstRejectedX = m.firstRejectedY = m.firstRejectedDepth = -1;
-    if (outKey != ~0ull) {
-        uint64_t pixel = outKey >> RejectedDepthBits;
-        m.firstRejectedX = int(pixel % uint64_t(width));
-        m.firstRejectedY = int(pixel / uint64_t(width));
-        m.firstRejectedDepth = int(outKey & ((1ull << RejectedDepthBits) - 1));
-    }
+    m.mneeConnections = outSums[6];
+    m.firstRejected = DecodeRejectedSampleKey(outKey, width);
     return m;
 }
 

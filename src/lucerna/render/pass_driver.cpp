@@ -69,13 +69,11 @@ void AddCounters(RenderStats &stats, const PassCounters &c, int width) {
     stats.regEnergy += c.regEnergy;
     stats.totalEnergy += c.totalEnergy;
     if (c.rejected == 0) return;
-    uint64_t key = c.firstRejected >> RejectedDepthBits;
-    uint64_t prev = stats.firstRejectedX < 0 ? ~0ull : uint64_t(stats.firstRejectedY) * width + stats.firstRejectedX;
-    if (stats.rejected == 0 || key < prev) {
-        stats.firstRejectedX = int(key % uint64_t(width));
-        stats.firstRejectedY = int(key / uint64_t(width));
-        stats.firstRejectedDepth = int(c.firstRejected & ((1ull << RejectedDepthBits) - 1));
-    }
+    uint64_t prev = stats.firstRejected.Valid()
+                        ? RejectedSampleKey(stats.firstRejected.x, stats.firstRejected.y, width, stats.firstRejected.depth,
+                                            stats.firstRejected.cause, stats.firstRejected.badValue, stats.firstRejected.entity)
+                        : ~0ull;
+    if (stats.rejected == 0 || c.firstRejected < prev) stats.firstRejected = DecodeRejectedSampleKey(c.firstRejected, width);
     stats.rejected += c.rejected;
 }
 

@@ -18,7 +18,7 @@ struct RenderStats {
     uint64_t samples = 0, rays = 0, shadowRays = 0, regConnections = 0, mneeConnections = 0;
     double regEnergy = 0, totalEnergy = 0;
     uint64_t rejected = 0;      // non-finite or negative sample values kept off the film
-    int firstRejectedX = -1, firstRejectedY = -1, firstRejectedDepth = -1;
+    RejectedSample firstRejected;   // the smallest (pixel, depth) one, with its cause (integrators/stats.h)
     double seconds = 0;         // rendering time of this run (passes), excluding scene setup
     double buildSeconds = 0;    // acceleration structure build (and upload)
     uint32_t passesThisRun = 0;

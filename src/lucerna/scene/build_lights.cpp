@@ -374,6 +374,7 @@ void BuildLights(BuildContext &ctx) {
             s.stats.lightProfiles.push_back("light " + std::to_string(s.lights.size()) + ": " + e.name + " " + profile);
         if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
             s.infiniteLights.push_back(uint32_t(s.lights.size()));
+        s.SetOrigin(s.lightOrigin, s.lights.size(), owner + " at " + e.loc.ToString());
         s.lights.push_back(l);
     });
 }

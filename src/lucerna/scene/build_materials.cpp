@@ -155,6 +155,7 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
     p.ReportUnused(ctx.diag, owner);
     uint32_t index = uint32_t(ctx.scene.materials.size());
     ctx.scene.materials.push_back(m);
+    ctx.scene.SetOrigin(ctx.scene.materialOrigin, index, owner + " at " + loc.ToString());
     return index;
 }
 
@@ -168,6 +169,7 @@ uint32_t DefaultMaterial(BuildContext &ctx) {
         m.reflectance = ConstantSpectrumTexture(Spectrum::Const(0.5f), SpectrumType::Albedo);
         ctx.defaultMaterial = uint32_t(ctx.scene.materials.size());
         ctx.scene.materials.push_back(m);
+        ctx.scene.SetOrigin(ctx.scene.materialOrigin, ctx.defaultMaterial, "the default material (\"diffuse\", reflectance 0.5)");
     }
     return ctx.defaultMaterial;
 }

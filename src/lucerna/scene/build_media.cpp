@@ -392,6 +392,7 @@ void BuildMedia(BuildContext &ctx) {
             Fail(ParamLoc(e.params, "type", e.loc), Where(e) + ": unknown medium type " + Quoted(type) +
                                                        " (expected homogeneous, uniformgrid, rgbgrid, cloud or nanovdb)");
         ctx.media[e.name] = uint32_t(s.media.size());
+        s.SetOrigin(s.mediumOrigin, s.media.size(), "MakeNamedMedium " + Quoted(e.name) + " at " + e.loc.ToString());
         s.media.push_back(m);
         s.stats.mediaByType[type]++;
         e.params.ReportUnused(ctx.diag, "MakeNamedMedium " + Quoted(e.name));

@@ -57,6 +57,8 @@ void ExpandBounds(Bounds3f &b, const Transform &t, const Vec3f &pMin, const Vec3
 uint32_t AddAreaLights(BuildContext &ctx, const Placement &pl, uint32_t shapeIndex, const std::vector<Float> &areas) {
     HostScene &s = ctx.scene;
     uint32_t first = uint32_t(s.lights.size());
+    const std::string origin =
+        "AreaLightSource \"diffuse\" on Shape " + Quoted(pl.shape->name) + " at " + pl.shape->loc.ToString() + pl.where;
     for (size_t i = 0; i < areas.size(); ++i) {
         Light l;
         l.kind = LightKind::DiffuseArea;
@@ -66,6 +68,7 @@ uint32_t AddAreaLights(BuildContext &ctx, const Placement &pl, uint32_t shapeInd
         l.shape = shapeIndex;
         l.primitive = uint32_t(i);
         l.twoSided = pl.areaLight->twoSided;
+        s.SetOrigin(s.lightOrigin, s.lights.size(), origin);
         s.lights.push_back(l);
     }
     s.stats.lightsByType["diffuse area"] += int(areas.size());

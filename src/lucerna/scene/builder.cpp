@@ -55,6 +55,17 @@ SceneView HostScene::View() const {
     return v;
 }
 
+void HostScene::SetOrigin(std::vector<uint32_t> &list, size_t index, const std::string &what) {
+    if (origins.empty() || origins.back() != what) origins.push_back(what);   // area lights: one per triangle
+    if (list.size() <= index) list.resize(index + 1, NoIndex);
+    list[index] = uint32_t(origins.size() - 1);
+}
+
+std::string HostScene::OriginOf(const std::vector<uint32_t> &list, uint32_t index) const {
+    if (index >= list.size() || list[index] >= origins.size()) return "";
+    return origins[list[index]];
+}
+
 namespace build {
 namespace {
 

@@ -73,6 +73,16 @@ class HostScene {
     CameraData camera;
     FilmData film;
     FilterData filter;
+
+    // Where each material, light and medium was declared, for messages about the render (the
+    // first rejected sample): e.g. `Material "conductor" at scene.pbrt:12:1`. Per entity an index
+    // into `origins` (NoIndex, or past the end: not recorded).
+    std::vector<std::string> origins;
+    std::vector<uint32_t> materialOrigin, lightOrigin, mediumOrigin;
+    // Records `what` as the origin of entity `index` of one of the per-entity lists above.
+    void SetOrigin(std::vector<uint32_t> &list, size_t index, const std::string &what);
+    // The origin of entity `index` ("" when none was recorded).
+    std::string OriginOf(const std::vector<uint32_t> &list, uint32_t index) const;
 };
 
 struct BuildOptions {
