@@ -227,12 +227,11 @@ TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
         double vert, hor;
         IESAnglesOfDirection(w.x, w.y, w.z, &vert, &hor);
         double want = p.Evaluate(vert, hor), got = ProfileValue(l, v, w);
-        if (std::abs(got / want - 1) > worst) {
-            worst = std::abs(got / want - 1);
-            std::printf("table worst so far %.2e at (%g, %g, %g): vertical %g horizontal %g\n", worst, w.x, w.y, w.z, vert, hor);
-        }
+        worst = std::max(worst, std::abs(got / want - 1));
     }
+    // Measured: 6e-5 (a texel-centered bilinear table: 2.4e-3, along the map's folds).
     EXPECT_LT(worst, 1e-3);
+    std::printf("vertex table vs IES evaluation: worst relative difference %.2e\n", worst);
 }
 
 // ---- Irradiance on a plane below the luminaire: E = I(theta, phi) cos(theta) / d^2 ----
