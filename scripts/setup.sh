@@ -6,7 +6,7 @@
 set -euo pipefail
 profile=${1:-all}
 PKGS=(build-essential cmake ninja-build pkg-config
-      libembree-dev libtbb-dev libopenexr-dev libpng-dev zlib1g-dev libcli11-dev libfmt-dev)
+      libembree-dev libtbb-dev libopenexr-dev libpng-dev zlib1g-dev libcli11-dev libfmt-dev libnanovdb-dev)
 case "$profile" in
   demo) ;;
   all) PKGS+=(libgtest-dev libgmock-dev libbenchmark-dev

@@ -732,7 +732,7 @@ TEST(Errors, Media) {
         {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n  \"float density\" -2\n", 5, "\"density\" must be in [0"},
         {"MakeNamedMedium \"fog\" \"string type\" \"cloud\" \"float wispiness\" nan\n", 4, "non-finite"},
         {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n  \"point3 p0\" [ 0 2 0 ]\n", 4, "p0 < p1"},
-        {"MakeNamedMedium \"fog\" \"string type\" \"nanovdb\" \"string filename\" \"a.nvdb\"\n", 4, "\"nanovdb\" is not supported"},
+        {"MakeNamedMedium \"fog\" \"string type\" \"nanovdb\"\n  \"string filename\" \"missing.nvdb\"\n", 5, "cannot read NanoVDB file"},
         {"MediumInterface \"mist\" \"\"\nShape \"sphere\"\n", 5, "medium \"mist\" is not defined"},
     };
     for (const Case &c : cases) {

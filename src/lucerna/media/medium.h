@@ -131,7 +131,7 @@ LU_INLINE MediumProperties SampleMediumPoint(const SceneView &s, const Medium &m
         mp.sigmaA = SampleSpectrum(m.sigmaA, lambda, s.spectra) * (m.sigmaScale * d);
         mp.sigmaS = SampleSpectrum(m.sigmaS, lambda, s.spectra) * (m.sigmaScale * d);
         if (m.emissive) {
-            Float scale = LookupGrid(s, m.LeGrid, pg);
+            Float scale = m.LeGrid.nx > 0 ? LookupGrid(s, m.LeGrid, pg) : m.LeScale;   // nanovdb: constant
             if (scale > 0) {
                 if (m.temperature.nx > 0) {
                     Float T = (LookupGrid(s, m.temperature, pg) - m.temperatureOffset) * m.temperatureScale;
