@@ -181,14 +181,14 @@ struct Shape {
 
 // ---- Lights ----
 
-enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite };
+enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Goniometric };
 
 struct Light {
     LightKind kind = LightKind::Point;
-    Spectrum spectrum;           // I (point, spot), L (distant, area, uniform infinite); image: unused
+    Spectrum spectrum;           // I (point, spot, goniometric), L (distant, area, uniform infinite); image: unused
     Float scale = 1;             // includes pbrt-v4's 1/SpectrumToPhotometric and `power` normalizations
-    Transform renderFromLight;   // point, spot, image infinite
-    Vec3f position;              // point, spot (render space)
+    Transform renderFromLight;   // point, spot, image infinite, goniometric (with pbrt-v4's y/z swap)
+    Vec3f position;              // point, spot, goniometric (render space)
     Vec3f direction;             // distant: direction the light travels *from* (wLight, towards the light)
     Float cosFalloffStart = 1, cosFalloffEnd = 0;  // spot
     uint32_t shape = NoIndex, primitive = 0;       // area light: the emitting shape and primitive
@@ -201,6 +201,12 @@ struct Light {
     // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
     Vec3f boundCenter;
     Float boundRadius = -1;
+    // Goniometric (and spot with an IES profile): a one-channel equal-area table of the intensity
+    // scale over the light-space sphere (images[profile]); NoIndex: none. An image's n x n texels
+    // (nearest, as pbrt-v4), or for IES files (profileVertices) (n+1)^2 vertex samples,
+    // interpolated linearly (lights/lights.h, ProfileValueAt).
+    uint32_t profile = NoIndex;
+    bool profileVertices = false;
 };
 
 // Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:

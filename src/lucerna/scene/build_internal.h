@@ -137,6 +137,10 @@ struct BuildContext {
     // Area light entities already interpreted (ReportUnused once each).
     std::map<int, AreaLightParams> areaLights;
 
+    // Goniometric / IES profile tables already built: file path -> scene.images index and the
+    // profile's description for `lucerna info` (build_lights.cpp).
+    std::map<std::string, std::pair<uint32_t, std::string>> profileTables;
+
     SpectrumRegistry &Registry() { return scene.spectra; }
 };
 
