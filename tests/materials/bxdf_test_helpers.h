@@ -49,6 +49,21 @@ inline BSDF MakeCoated(Float eta, Float alpha, const SampledSpectrum &R, Float t
     return b;
 }
 
+inline BSDF MakeCoatedConductor(Float eta, Float coatAlpha, Float conductorAlpha, const SampledSpectrum &cEta,
+                                const SampledSpectrum &cK, Float thickness, const SampledSpectrum &albedo, Float g,
+                                int maxDepth = 10, int nSamples = 1) {
+    BSDF b; b.shadingFrame = TestFrame(); b.kind = BxDFKind::CoatedConductor;
+    b.coatedConductor = CoatedConductorBxDF(
+        DielectricBxDF(eta, TrowbridgeReitzDistribution(coatAlpha, coatAlpha)),
+        ConductorBxDF(TrowbridgeReitzDistribution(conductorAlpha, conductorAlpha), cEta, cK), thickness, albedo, g,
+        maxDepth, nSamples);
+    return b;
+}
+inline BSDF MakeDiffuseTransmission(const SampledSpectrum &R, const SampledSpectrum &T) {
+    BSDF b; b.shadingFrame = TestFrame(); b.kind = BxDFKind::DiffuseTransmission;
+    b.diffuseTransmission = DiffuseTransmissionBxDF(R, T); return b;
+}
+
 // Local direction from spherical angles (theta from +z).
 inline Vec3f Dir(Float thetaDeg, Float phiDeg = 0) {
     Float t = Radians(thetaDeg), p = Radians(phiDeg);
@@ -59,7 +74,7 @@ inline Vec3f DirD(double theta, double phi) {
 }
 
 // Number of chi-square tests in the material suite, for the Sidak correction of the 1e-4 level.
-constexpr int NumChi2Tests = 22;
+constexpr int NumChi2Tests = 24;
 
 struct BSDFChi2 {
     Chi2Result chi2;           // the harness's result (support/chi2.h)

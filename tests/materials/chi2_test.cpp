@@ -33,6 +33,12 @@ TEST(Chi2, Diffuse) {
     RunChi2({"diffuse below", MakeDiffuse(SampledSpectrum(0.7f)), Dir(150, 200)}, 2);
 }
 
+TEST(Chi2, DiffuseTransmission) {
+    // Lobe choice by the largest component of R and T: unequal channels test the pdf's weights.
+    RunChi2({"diffusetransmission above", MakeDiffuseTransmission(Spec(0.2f, 0.5f, 0.3f, 0.1f), Spec(0.7f, 0.2f, 0.1f, 0.4f)), Dir(35, 15)}, 25);
+    RunChi2({"diffusetransmission below, T only", MakeDiffuseTransmission(SampledSpectrum(0), SampledSpectrum(0.6f)), Dir(140, 60)}, 26);
+}
+
 TEST(Chi2, ConductorIsotropic) {
     RunChi2({"conductor r=0.05 (remapped), 30 deg", MakeConductor(Remap(0.05f), Remap(0.05f), GoldEta(), GoldK()), Dir(30, 40)}, 3);
     RunChi2({"conductor r=0.3 (remapped), 60 deg", MakeConductor(Remap(0.3f), Remap(0.3f), GoldEta(), GoldK()), Dir(60, 100)}, 4);

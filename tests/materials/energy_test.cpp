@@ -248,7 +248,8 @@ TEST(Reciprocity, ReflectionIsSymmetric) {
     std::vector<BSDF> bsdfs = {MakeDiffuse(SampledSpectrum(0.6f)),
                                MakeConductor(0.2f, 0.2f, Spec(0.2f, 0.4f, 1.1f, 1.5f), Spec(3.9f, 2.5f, 1.9f, 1.8f)),
                                MakeConductor(0.1f, 0.5f, SampledSpectrum(1.3f), SampledSpectrum(2.0f)),
-                               MakeDielectric(1.5f, 0.3f, 0.3f), MakeDielectric(2.4f, 0.15f, 0.45f)};
+                               MakeDielectric(1.5f, 0.3f, 0.3f), MakeDielectric(2.4f, 0.15f, 0.45f),
+                               MakeDiffuseTransmission(SampledSpectrum(0.3f), SampledSpectrum(0.5f))};
     RNG rng(99, 3);
     for (const BSDF &b : bsdfs) {
         int checked = 0;

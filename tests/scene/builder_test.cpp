@@ -687,7 +687,7 @@ TEST(Errors, UnknownShape) { ExpectError("Shape \"sphere\"\nShape \"teapot\"\n",
 TEST(Errors, UnsupportedShape) { ExpectError("Shape \"cylinder\"\n", 4, "\"cylinder\""); }
 TEST(Errors, PartialSphere) { ExpectError("Shape \"sphere\" \"float phimax\" 180\n", 4, "partial sphere"); }
 TEST(Errors, UnknownLight) { ExpectError("LightSource \"laser\"\n", 4, "\"laser\""); }
-TEST(Errors, UnsupportedLight) { ExpectError("LightSource \"goniometric\"\n", 4, "\"goniometric\""); }
+TEST(Errors, UnsupportedLight) { ExpectError("LightSource \"projection\"\n", 4, "\"projection\""); }
 TEST(Errors, UnknownNamedSpectrum) {
     ExpectError("Material \"conductor\"\n  \"spectrum eta\" \"metal-Unobtainium-eta\"\nShape \"sphere\"\n", 5, "metal-Unobtainium-eta");
 }

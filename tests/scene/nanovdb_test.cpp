@@ -12,6 +12,7 @@
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/SampleFromVoxels.h>
 
+#include "lucerna/backend/cpu/cpu_render.h"
 #include "lucerna/media/medium.h"
 #include "lucerna/scene/builder.h"
 #include "support/test_support.h"
@@ -131,6 +132,39 @@ TEST(NanoVDBMedium, TemperatureGridMakesItEmissive) {
     WriteGrids(dir2, Grids(MakeGrid("density", 0.1, nanovdb::Vec3d(0), 0)));
     auto cold = Load(dir2, "MakeNamedMedium \"smoke\" \"string type\" \"nanovdb\" \"string filename\" \"grid.nvdb\"\n");
     EXPECT_FALSE(cold->media[0].emissive);
+}
+
+// Issue 13's memory case: a dense 256^3 grid (every voxel active) is read, stored (257^3 floats
+// with the background layer, 68 MB) and rendered; its lookups still match NanoVDB's sampler.
+TEST(NanoVDBMedium, Dense256CubedGridRenders) {
+    std::string dir = test::TempDir("nanovdb_256");
+    {
+        nanovdb::GridBuilder<float> builder(0.0f, nanovdb::GridClass::FogVolume);
+        builder([](const nanovdb::Coord &c) { return 0.2f + 0.001f * float((c[0] + 2 * c[1] + 3 * c[2]) % 700); },
+                nanovdb::CoordBBox(nanovdb::Coord(0), nanovdb::Coord(255)));
+        WriteGrids(dir, Grids(builder.getHandle<nanovdb::AbsDiff>(1.0 / 256, nanovdb::Vec3d(-0.5), "density")));
+    }
+    auto scene = Load(dir, "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
+                           "AttributeBegin\nTranslate 0 0 1.2\n"
+                           "MakeNamedMedium \"smoke\" \"string type\" \"nanovdb\" \"string filename\" \"grid.nvdb\" \"float scale\" 4\n"
+                           "MediumInterface \"smoke\" \"\"\nMaterial \"interface\"\nShape \"sphere\" \"float radius\" 0.45\n"
+                           "AttributeEnd\n");
+    const Medium &m = scene->media[0];
+    EXPECT_EQ(m.density.nx, 257u);
+    EXPECT_EQ(m.density.nz, 257u);
+    EXPECT_GE(scene->mediumData.size(), size_t(257) * 257 * 257);
+    RenderSettings rs = scene->settings;
+    rs.spp = 1;
+    rs.progress = false;
+    FilmAccumulator film;
+    RenderStats st = RenderCPU(*scene, rs, film);
+    EXPECT_EQ(st.rejected, 0u);
+    Image img = film.Resolve(scene->View().film);
+    // The centre looks through the ball (transmittance < 1), the corner sees the sky (radiance 1).
+    float centre = img.At(4, 4, 1), corner = img.At(0, 0, 1);
+    EXPECT_NEAR(corner, 1.0f, 0.05f);
+    EXPECT_LT(centre, 0.9f * corner);
+    for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
 float WithNaN(const nanovdb::Coord &c) { return c == nanovdb::Coord(1, 5, -2) ? std::nanf("") : 1.f; }

@@ -105,22 +105,36 @@ struct SpectrumTexture {
 
 // ---- Materials ----
 
-enum class MaterialKind : uint8_t { Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface };
+enum class MaterialKind : uint8_t {
+    Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface,
+    CoatedConductor, DiffuseTransmission, Mix
+};
 
 struct Material {
     MaterialKind kind = MaterialKind::Diffuse;
-    SpectrumTexture reflectance;          // diffuse, coateddiffuse, conductor when useReflectance
-    SpectrumTexture conductorEta, conductorK;
-    bool useReflectance = false;          // conductor given "reflectance" instead of eta/k
-    FloatTexture uRoughness, vRoughness;  // conductor, dielectric, coateddiffuse (interface roughness)
+    SpectrumTexture reflectance;          // diffuse, coateddiffuse, diffusetransmission, (coated)conductor when useReflectance
+    SpectrumTexture conductorEta, conductorK;   // conductor; coatedconductor's conductor.eta / conductor.k
+    bool useReflectance = false;          // (coated)conductor given "reflectance" instead of eta/k
+    FloatTexture uRoughness, vRoughness;  // conductor, dielectric, coateddiffuse and coatedconductor (interface roughness)
     bool remapRoughness = true;
-    Spectrum eta = Spectrum::Const(1.5f); // dielectric, thindielectric, coateddiffuse interface;
+    Spectrum eta = Spectrum::Const(1.5f); // dielectric, thindielectric, coated* interface;
                                           // a non-constant eta makes the dielectric dispersive
-    // coateddiffuse (pbrt-v4 defaults)
+    // coateddiffuse and coatedconductor (pbrt-v4 defaults)
     FloatTexture thickness;               // default 0.01
     FloatTexture g;                       // default 0
     SpectrumTexture albedo;               // default 0
     int maxDepth = 10, nSamples = 1;
+    FloatTexture conductorURoughness, conductorVRoughness;   // coatedconductor's conductor.roughness (default 0)
+    // diffusetransmission: reflectance (default 0.25), transmittance (default 0.25), both times scale
+    SpectrumTexture transmittance;
+    Float scale = 1;
+    // mix: mixMaterials[1] where a hash u of (p, wo) in [0,1) is <= amount, else mixMaterials[0]
+    // (pbrt-v4's MixMaterial::ChooseMaterial); the children are earlier materials, maybe mixes.
+    FloatTexture amount;                  // default 0.5
+    uint32_t mixMaterials[2] = {NoIndex, NoIndex};
+    // "normalmap" (any material but mix): scene.images index of a linear RGB image, tangent-space
+    // normals in [0,1]^3, repeat wrap (pbrt-v4's NormalMap); NoIndex: none.
+    uint32_t normalMap = NoIndex;
 };
 
 // ---- Shapes ----
@@ -167,14 +181,14 @@ struct Shape {
 
 // ---- Lights ----
 
-enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Collimated };
+enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Goniometric, Collimated };
 
 struct Light {
     LightKind kind = LightKind::Point;
-    Spectrum spectrum;           // I (point, spot), L (distant, area, uniform infinite); image: unused
+    Spectrum spectrum;           // I (point, spot, goniometric), L (distant, area, uniform infinite); image: unused
     Float scale = 1;             // includes pbrt-v4's 1/SpectrumToPhotometric and `power` normalizations
-    Transform renderFromLight;   // point, spot, image infinite
-    Vec3f position;              // point, spot (render space)
+    Transform renderFromLight;   // point, spot, image infinite, goniometric (with pbrt-v4's y/z swap)
+    Vec3f position;              // point, spot, goniometric (render space)
     Vec3f direction;             // distant: direction the light travels *from* (wLight, towards the light)
     Float cosFalloffStart = 1, cosFalloffEnd = 0;  // spot
     uint32_t shape = NoIndex, primitive = 0;       // area light: the emitting shape and primitive
@@ -187,6 +201,12 @@ struct Light {
     // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
     Vec3f boundCenter;
     Float boundRadius = -1;
+    // Goniometric (and spot with an IES profile): a one-channel equal-area table of the intensity
+    // scale over the light-space sphere (images[profile]); NoIndex: none. An image's n x n texels
+    // (nearest, as pbrt-v4), or for IES files (profileVertices) (n+1)^2 vertex samples,
+    // interpolated linearly (lights/lights.h, ProfileValueAt).
+    uint32_t profile = NoIndex;
+    bool profileVertices = false;
     // Collimated beam (Lucerna extension, lights/collimated.h): a disc of radius beamRadius at
     // `position` whose normal `direction` is the beam's direction of travel; spectral irradiance
     // E(y) = spectrum * scale * profile, profile uniform (beamWaist == 0) or gaussian

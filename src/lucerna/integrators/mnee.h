@@ -122,8 +122,10 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     }
     *siOut = si;
     if (si.material == NoIndex) return MneeSurfaceKind::None;
-    const Material &mat = scene.materials[si.material];
+    const Material &mat = ResolveMixMaterial(scene.materials[si.material], si, scene);   // a mix: its pick at si
     if (mat.kind != MaterialKind::Dielectric && mat.kind != MaterialKind::ThinDielectric) return MneeSurfaceKind::Blocking;
+    // The solver uses the interpolated normal; a normal-mapped surface is not a chain vertex.
+    if (mat.normalMap != NoIndex) return MneeSurfaceKind::Blocking;
     // A dispersive index ends the secondary wavelengths at the vertex: not for MNEE (decided by
     // the material alone, so that the emitter-hit weight decides as the light sample did).
     if (!mat.eta.IsConstant()) return MneeSurfaceKind::Blocking;

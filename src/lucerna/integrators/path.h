@@ -126,6 +126,9 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             ray.o = OffsetRayOrigin(si.p, si.n, ray.d);
             continue;
         }
+        // A normal map moves the shading normal (pbrt-v4's SetShadingGeometry); without one this
+        // is the same vector.
+        si.ns = bsdf.shadingFrame.z;
         if (depth++ == ps.maxDepth) break;
         // ---- Explicit techniques at this vertex ----
         bool specular = bsdf.IsSpecular();

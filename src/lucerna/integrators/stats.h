@@ -43,9 +43,18 @@ LU_INLINE bool FindBadValue(const SampledSpectrum &v, BadValue *kind) {
     return neg;
 }
 
+// True when every wavelength is finite and non-negative (one pass of comparisons, no branches:
+// NaN fails both).
+LU_INLINE bool AllFiniteNonNegative(const SampledSpectrum &v) {
+    int ok = 1;
+    for (int i = 0; i < NSpectrumSamples; ++i) ok &= int(v[i] >= 0) & int(v[i] <= Float(3.402823466e38));
+    return ok != 0;
+}
+
 // Records the first bad value of a path: a contribution (or throughput) v from `cause` at entity
 // `entity` (light, material or medium index) and depth. Returns true when v is bad.
 LU_INLINE bool NoteBadValue(PathStats &st, const SampledSpectrum &v, RejectCause cause, uint32_t entity, int depth) {
+    if (AllFiniteNonNegative(v)) return false;
     BadValue kind;
     if (!FindBadValue(v, &kind)) return false;
     // The first bad value, except that a NaN or Inf later on the path outranks a negative value

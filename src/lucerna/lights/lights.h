@@ -1,5 +1,5 @@
-// Lucerna: light sampling and emission for point, spot, distant, diffuse area, uniform and image
-// infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
+// Lucerna: light sampling and emission for point, spot, goniometric, distant, diffuse area, uniform
+// and image infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
 // with shape sampling in shape_sampling.h and the power-based light selection in light_sampler.h.
 #pragma once
 
@@ -22,7 +22,8 @@ struct LightLiSample {
 };
 
 LU_INLINE bool IsDeltaLight(const Light &l) {
-    return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant;
+    return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant ||
+           l.kind == LightKind::Goniometric;
 }
 
 LU_INLINE bool IsInfiniteLight(const Light &l) {
@@ -39,6 +40,39 @@ LU_INLINE Float SmoothStep(Float x, Float a, Float b) {
 // Spot light falloff for a unit direction wLight in light space (+z is the spot axis).
 LU_INLINE Float SpotFalloff(const Light &l, const Vec3f &wLight) {
     return SmoothStep(wLight.z, l.cosFalloffEnd, l.cosFalloffStart);
+}
+
+// The value at equal-area coordinates uv of a one-channel profile table: pbrt-v4's nearest texel
+// (GoniometricLight::I: coordinates clamped), or for a vertex table ((n+1) x (n+1) samples at
+// uv = (i, j) / n, n even: tables made from IES files) linear on the two triangles of each cell,
+// split along the diagonal parallel to the map's fold in that quadrant (|u| + |v| = 1 in
+// [-1,1]^2, the equator), so that no triangle straddles a fold (the edges and the axes are cell
+// edges): the interpolant is continuous on the sphere and second-order accurate everywhere.
+LU_INLINE Float ProfileValueAt(const ImageData &im, const Float *texels, Vec2f uv, bool vertices) {
+    const Float *t = texels + im.offset;
+    int width = int(im.width), height = int(im.height);
+    if (!vertices) {
+        int x = Clamp(int(uv.x * Float(width)), 0, width - 1), y = Clamp(int(uv.y * Float(height)), 0, height - 1);
+        return t[uint64_t(y) * uint32_t(width) + uint32_t(x)];
+    }
+    int n = width - 1;
+    Float px = uv.x * Float(n), py = uv.y * Float(n);
+    int i = Clamp(int(std::floor(px)), 0, n - 1), j = Clamp(int(std::floor(py)), 0, n - 1);
+    Float fx = Clamp(px - Float(i), Float(0), Float(1)), fy = Clamp(py - Float(j), Float(0), Float(1));
+    const Float *row0 = t + uint64_t(j) * uint32_t(width) + uint32_t(i), *row1 = row0 + width;
+    Float v00 = row0[0], v10 = row0[1], v01 = row1[0], v11 = row1[1];
+    if ((2 * i >= n) == (2 * j >= n)) {   // fold along x + y = const: split from (1, 0) to (0, 1)
+        if (fx + fy <= 1) return v00 + fx * (v10 - v00) + fy * (v01 - v00);
+        return v11 + (1 - fx) * (v01 - v11) + (1 - fy) * (v10 - v11);
+    }
+    // fold along x - y = const: split from (0, 0) to (1, 1)
+    if (fx >= fy) return v00 + fx * (v10 - v00) + fy * (v11 - v10);
+    return v00 + fy * (v01 - v00) + fx * (v11 - v01);
+}
+
+// The intensity scale of l's profile table (Light::profile) at the unit light-space direction w.
+LU_INLINE Float ProfileValue(const Light &l, const SceneView &s, Vec3f w) {
+    return ProfileValueAt(s.images[l.profile], s.texels.ptr, EqualAreaSphereToSquare(w), l.profileVertices);
 }
 
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
@@ -104,7 +138,8 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     ls->isDelta = false;
     switch (l.kind) {
     case LightKind::Point:
-    case LightKind::Spot: {
+    case LightKind::Spot:
+    case LightKind::Goniometric: {
         Vec3f d = l.position - ctx.p;
         Float d2 = LengthSquared(d);
         if (d2 == 0) return false;
@@ -113,6 +148,10 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
         if (l.kind == LightKind::Spot) {
             Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi));
             I *= SpotFalloff(l, wLight);
+            // An IES profile on a spot light: its nadir is the spot axis (+z), C0 the frame's +x.
+            if (l.profile != NoIndex) I *= ProfileValue(l, s, Vec3f(wLight.x, wLight.y, -wLight.z));
+        } else if (l.kind == LightKind::Goniometric) {
+            I *= ProfileValue(l, s, Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi)));
         }
         ls->L = I / d2;
         ls->pdf = 1;

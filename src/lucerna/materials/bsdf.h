@@ -23,7 +23,9 @@ struct SpecularLobe {
     Float pdf = 1;
 };
 
-enum class BxDFKind : uint8_t { None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse };
+enum class BxDFKind : uint8_t {
+    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission
+};
 
 struct BSDF {
     BxDFKind kind = BxDFKind::None;
@@ -34,6 +36,8 @@ struct BSDF {
         DielectricBxDF dielectric;
         ThinDielectricBxDF thinDielectric;
         CoatedDiffuseBxDF coatedDiffuse;
+        CoatedConductorBxDF coatedConductor;
+        DiffuseTransmissionBxDF diffuseTransmission;
     };
 
     LU_HD BSDF() : diffuse() {}
@@ -49,6 +53,8 @@ struct BSDF {
         case BxDFKind::Dielectric: return dielectric.Flags();
         case BxDFKind::ThinDielectric: return thinDielectric.Flags();
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Flags();
+        case BxDFKind::CoatedConductor: return coatedConductor.Flags();
+        case BxDFKind::DiffuseTransmission: return diffuseTransmission.Flags();
         default: return BxDF_Unset;
         }
     }
@@ -59,6 +65,8 @@ struct BSDF {
         case BxDFKind::Dielectric: return dielectric.f(wo, wi, mode);
         case BxDFKind::ThinDielectric: return thinDielectric.f(wo, wi, mode);
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.f(wo, wi, mode);
+        case BxDFKind::CoatedConductor: return coatedConductor.f(wo, wi, mode);
+        case BxDFKind::DiffuseTransmission: return diffuseTransmission.f(wo, wi, mode);
         default: return SampledSpectrum(0);
         }
     }
@@ -69,6 +77,8 @@ struct BSDF {
         case BxDFKind::Dielectric: return dielectric.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::ThinDielectric: return thinDielectric.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Sample_f(wo, uc, u, mode, sampleFlags, bs);
+        case BxDFKind::CoatedConductor: return coatedConductor.Sample_f(wo, uc, u, mode, sampleFlags, bs);
+        case BxDFKind::DiffuseTransmission: return diffuseTransmission.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         default: return false;
         }
     }
@@ -79,6 +89,8 @@ struct BSDF {
         case BxDFKind::Dielectric: return dielectric.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::ThinDielectric: return thinDielectric.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.PDF(wo, wi, mode, sampleFlags);
+        case BxDFKind::CoatedConductor: return coatedConductor.PDF(wo, wi, mode, sampleFlags);
+        case BxDFKind::DiffuseTransmission: return diffuseTransmission.PDF(wo, wi, mode, sampleFlags);
         default: return 0;
         }
     }
@@ -145,7 +157,8 @@ struct BSDF {
     }
 
     // The Dirac lobes for outgoing direction woRender; returns their number (0..2). A coated
-    // diffuse with a smooth coat reports its coat reflection (the rest of it is not Dirac).
+    // diffuse or coated conductor with a smooth coat reports its coat reflection only (the light
+    // that enters the coat is not reported, even over a smooth conductor).
     LU_HD int SpecularLobes(Vec3f woRender, SpecularLobe lobes[2], TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = RenderToLocal(woRender);
         if (wo.z == 0) return 0;
@@ -166,11 +179,14 @@ struct BSDF {
                 add(wr, FrComplex(AbsCosTheta(wo), conductor.eta, conductor.k), BxDF_SpecularReflection, 1, 1);
             break;
         case BxDFKind::Dielectric:
-        case BxDFKind::CoatedDiffuse: {
-            const DielectricBxDF &d = (kind == BxDFKind::Dielectric) ? dielectric : coatedDiffuse.top;
+        case BxDFKind::CoatedDiffuse:
+        case BxDFKind::CoatedConductor: {
+            const DielectricBxDF &d = kind == BxDFKind::Dielectric      ? dielectric
+                                      : kind == BxDFKind::CoatedDiffuse ? coatedDiffuse.top
+                                                                        : coatedConductor.top;
             if (!d.IsDirac()) break;
             Float cosO = CosTheta(wo);
-            if (kind == BxDFKind::CoatedDiffuse) cosO = AbsCosTheta(wo);   // two-sided coat
+            if (kind != BxDFKind::Dielectric) cosO = AbsCosTheta(wo);   // two-sided coat
             Float R = FrDielectric(cosO, d.eta), T = 1 - R;
             // Sample_f picks reflection with R / (R + T); a coated diffuse samples its coat the same way.
             add(wr, SampledSpectrum(R), BxDF_SpecularReflection, 1, R / (R + T));
@@ -226,17 +242,88 @@ LU_INLINE Float SampleEta(const Spectrum &eta, SampledWavelengths &lambda, const
     return e;
 }
 
-// Evaluates the textures of material m at si and builds the BSDF in si's shading frame
-// (z = si.ns, x along si.dpdu). Returns false for interface materials (no surface).
-// May call lambda.TerminateSecondary() (dispersive dielectrics).
-LU_INLINE bool MakeBSDF(const Material &m, const SurfaceInteraction &si, SampledWavelengths &lambda,
+// Complex index of a conductor (conductor, coatedconductor's base): eta/k textures, or pbrt-v4's
+// reflectance r -> eta = 1, k = 2 sqrt(r) / sqrt(1 - r) (normal-incidence Fresnel = r).
+LU_INLINE void ConductorEtaK(const Material &m, const TextureEvalContext &ctx, const SampledWavelengths &lambda,
+                             const SceneView &scene, SampledSpectrum *eta, SampledSpectrum *k) {
+    if (!m.useReflectance) {
+        *eta = EvalSpectrumTexture(m.conductorEta, ctx, lambda, scene);
+        *k = EvalSpectrumTexture(m.conductorK, ctx, lambda, scene);
+    } else {
+        SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, .9999f);
+        *eta = SampledSpectrum(1);
+        *k = Sqrt(r) * 2 / Sqrt(ClampZero(SampledSpectrum(1) - r));
+    }
+}
+
+// pbrt-v4's MixMaterial::ChooseMaterial, repeated while the choice is itself a mix: amount <= 0
+// picks the first material, >= 1 the second, otherwise the second where a hash of (p, wo) and
+// the two children, uniform in [0,1), is <= amount. Deterministic: the same point seen along the
+// same direction always scatters with the same material (shadow rays and MIS see the same BSDF).
+LU_INLINE const Material &ResolveMixMaterial(const Material &m, const SurfaceInteraction &si, const SceneView &scene) {
+    const Material *cur = &m;
+    while (cur->kind == MaterialKind::Mix) {
+        TextureEvalContext ctx;
+        ctx.p = si.p;
+        ctx.n = si.n;
+        ctx.uv = si.uv;
+        Float amount = EvalFloatTexture(cur->amount, ctx, scene);
+        uint32_t m0 = cur->mixMaterials[0], m1 = cur->mixMaterials[1];
+        uint32_t pick;
+        if (amount <= 0) pick = m0;
+        else if (amount >= 1) pick = m1;
+        else pick = amount < HashFloat(si.p, si.wo, m0, m1) ? m0 : m1;
+        cur = &scene.materials[pick];
+    }
+    return *cur;
+}
+
+// pbrt-v4's NormalMap: the tangent-space normal 2 rgb - 1 of the map at (u, 1 - v) (repeat
+// wrap), in the shading frame f, becomes the shading normal (on n's side), with the shading
+// tangent made orthogonal to it (Gram-Schmidt). Computed in f's local coordinates, so that a flat
+// map ((0.5, 0.5, 1) everywhere: local normal exactly (0, 0, 1)) returns f bit for bit. The
+// bilinear lookup is written as nested lerps, exact where the four texels are equal.
+LU_INLINE Float NormalMapChannel(const ImageData &img, const SceneView &scene, Vec2f st, int c) {
+    Float x = st.x * img.width - 0.5f, y = st.y * img.height - 0.5f;
+    Float fx = std::floor(x), fy = std::floor(y);
+    int xi = int(fx), yi = int(fy);
+    Float dx = x - fx, dy = y - fy;
+    Float v00 = ImageTexel(img, scene, xi, yi, c), v10 = ImageTexel(img, scene, xi + 1, yi, c);
+    Float v01 = ImageTexel(img, scene, xi, yi + 1, c), v11 = ImageTexel(img, scene, xi + 1, yi + 1, c);
+    Float top = v00 + dx * (v10 - v00), bottom = v01 + dx * (v11 - v01);
+    return top + dy * (bottom - top);
+}
+LU_INLINE Frame NormalMappedFrame(const Frame &f, const ImageData &img, const SceneView &scene, Vec2f uv, Vec3f n) {
+    Vec2f st(uv.x, 1 - uv.y);
+    Vec3f nl(2 * NormalMapChannel(img, scene, st, 0) - 1, 2 * NormalMapChannel(img, scene, st, 1) - 1,
+             2 * NormalMapChannel(img, scene, st, 2) - 1);
+    if (!(LengthSquared(nl) > 0)) return f;   // a black texel has no direction: keep the frame
+    nl = Normalize(nl);
+    Frame r;
+    r.z = f.FromLocal(nl);
+    if (Dot(r.z, n) < 0) r.z = -r.z;          // pbrt-v4: the shading normal faces n's side
+    Vec3f xl = Vec3f(1, 0, 0) - nl * nl.x;    // the tangent (1, 0, 0) orthogonal to the new normal
+    if (!(LengthSquared(xl) > 1e-12f)) return Frame::FromZ(r.z);
+    r.x = f.FromLocal(Normalize(xl));
+    r.y = Cross(r.z, r.x);
+    return r;
+}
+
+// Evaluates the textures of material m at si and builds the BSDF in si's shading frame (z =
+// si.ns, x along si.dpdu; with a normal map, NormalMappedFrame of it). Returns false for
+// interface materials (no surface). A mix material is first resolved to the material it picks at
+// si (ResolveMixMaterial). May call lambda.TerminateSecondary() (dispersive dielectrics, coats).
+LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, SampledWavelengths &lambda,
                         const SceneView &scene, BSDF *bsdf) {
+    const Material &m = material.kind == MaterialKind::Mix ? ResolveMixMaterial(material, si, scene) : material;
     if (m.kind == MaterialKind::Interface) return false;
     TextureEvalContext ctx;
     ctx.p = si.p;
     ctx.n = si.n;
     ctx.uv = si.uv;
     bsdf->shadingFrame = Frame::FromXZ(si.dpdu, si.ns);
+    if (m.normalMap != NoIndex)
+        bsdf->shadingFrame = NormalMappedFrame(bsdf->shadingFrame, scene.images[m.normalMap], scene, si.uv, si.n);
     switch (m.kind) {
     case MaterialKind::Diffuse: {
         SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, 1);
@@ -247,15 +334,7 @@ LU_INLINE bool MakeBSDF(const Material &m, const SurfaceInteraction &si, Sampled
     case MaterialKind::Conductor: {
         TrowbridgeReitzDistribution distrib = MakeDistribution(m, ctx, scene);
         SampledSpectrum etas, ks;
-        if (!m.useReflectance) {
-            etas = EvalSpectrumTexture(m.conductorEta, ctx, lambda, scene);
-            ks = EvalSpectrumTexture(m.conductorK, ctx, lambda, scene);
-        } else {
-            // pbrt-v4: a reflectance r becomes eta = 1, k = 2 sqrt(r) / sqrt(1 - r) (normal-incidence F = r).
-            SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, .9999f);
-            etas = SampledSpectrum(1);
-            ks = Sqrt(r) * 2 / Sqrt(ClampZero(SampledSpectrum(1) - r));
-        }
+        ConductorEtaK(m, ctx, lambda, scene, &etas, &ks);
         bsdf->kind = BxDFKind::Conductor;
         bsdf->conductor = ConductorBxDF(distrib, etas, ks);
         return true;
@@ -282,6 +361,36 @@ LU_INLINE bool MakeBSDF(const Material &m, const SurfaceInteraction &si, Sampled
         bsdf->kind = BxDFKind::CoatedDiffuse;
         bsdf->coatedDiffuse = CoatedDiffuseBxDF(DielectricBxDF(eta, distrib), DiffuseBxDF(r), thick, a, gg,
                                                 m.maxDepth, m.nSamples);
+        return true;
+    }
+    case MaterialKind::CoatedConductor: {
+        // pbrt-v4's CoatedConductorMaterial::GetBxDF: the base's index is relative to the coat.
+        TrowbridgeReitzDistribution interfaceDistrib = MakeDistribution(m, ctx, scene);
+        Float thick = EvalFloatTexture(m.thickness, ctx, scene);
+        Float ieta = SampleEta(m.eta, lambda, scene);
+        SampledSpectrum ce, ck;
+        ConductorEtaK(m, ctx, lambda, scene, &ce, &ck);
+        ce /= ieta;
+        ck /= ieta;
+        Float cu = EvalFloatTexture(m.conductorURoughness, ctx, scene);
+        Float cv = EvalFloatTexture(m.conductorVRoughness, ctx, scene);
+        if (m.remapRoughness) {
+            cu = TrowbridgeReitzDistribution::RoughnessToAlpha(cu);
+            cv = TrowbridgeReitzDistribution::RoughnessToAlpha(cv);
+        }
+        SampledSpectrum a = ClampSpectrum(EvalSpectrumTexture(m.albedo, ctx, lambda, scene), 0, 1);
+        Float gg = Clamp(EvalFloatTexture(m.g, ctx, scene), Float(-1), Float(1));
+        bsdf->kind = BxDFKind::CoatedConductor;
+        bsdf->coatedConductor = CoatedConductorBxDF(DielectricBxDF(ieta, interfaceDistrib),
+                                                    ConductorBxDF(TrowbridgeReitzDistribution(cu, cv), ce, ck), thick,
+                                                    a, gg, m.maxDepth, m.nSamples);
+        return true;
+    }
+    case MaterialKind::DiffuseTransmission: {
+        SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene) * m.scale, 0, 1);
+        SampledSpectrum t = ClampSpectrum(EvalSpectrumTexture(m.transmittance, ctx, lambda, scene) * m.scale, 0, 1);
+        bsdf->kind = BxDFKind::DiffuseTransmission;
+        bsdf->diffuseTransmission = DiffuseTransmissionBxDF(r, t);
         return true;
     }
     default: return false;

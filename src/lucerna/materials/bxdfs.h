@@ -1,5 +1,6 @@
 // Lucerna: the BxDFs in the local shading frame (z = shading normal), host and device:
-// diffuse, conductor, dielectric, thin dielectric and coated diffuse (stochastic layered model).
+// diffuse, diffuse transmission, conductor, dielectric, thin dielectric, and the stochastic
+// layered model over a diffuse or a conductor base (coated diffuse, coated conductor).
 // Follows pbrt-v4's bxdfs.h / bxdfs.cpp: same lobes, sampling, pdfs, flags and edge cases.
 #pragma once
 
@@ -22,6 +23,7 @@ enum BxDFFlags : uint8_t {
     BxDF_DiffuseReflection = BxDF_Diffuse | BxDF_Reflection,
     BxDF_GlossyReflection = BxDF_Glossy | BxDF_Reflection,
     BxDF_SpecularReflection = BxDF_Specular | BxDF_Reflection,
+    BxDF_DiffuseTransmission = BxDF_Diffuse | BxDF_Transmission,
     BxDF_GlossyTransmission = BxDF_Glossy | BxDF_Transmission,
     BxDF_SpecularTransmission = BxDF_Specular | BxDF_Transmission,
 };
@@ -91,6 +93,50 @@ struct DiffuseBxDF {
     LU_HD Float PDF(Vec3f wo, Vec3f wi, TransportMode, uint8_t sampleFlags) const {
         if (!(sampleFlags & BxDF_SampleReflection) || !SameHemisphere(wo, wi)) return 0;
         return CosineHemispherePDF(AbsCosTheta(wi));
+    }
+};
+
+// ---- Diffuse transmission (Lambertian reflection R and Lambertian transmission T) ----
+
+struct DiffuseTransmissionBxDF {
+    SampledSpectrum R, T;
+
+    DiffuseTransmissionBxDF() = default;
+    LU_HD DiffuseTransmissionBxDF(const SampledSpectrum &R, const SampledSpectrum &T) : R(R), T(T) {}
+
+    LU_HD uint8_t Flags() const {
+        return uint8_t((R ? BxDF_DiffuseReflection : BxDF_Unset) | (T ? BxDF_DiffuseTransmission : BxDF_Unset));
+    }
+
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi, TransportMode) const {
+        return SameHemisphere(wo, wi) ? R * InvPi : T * InvPi;
+    }
+    // Picks reflection or transmission with probability proportional to the largest component of
+    // R and T (pbrt-v4), then a cosine-distributed direction on that side.
+    LU_HD bool Sample_f(Vec3f wo, Float uc, Vec2f u, TransportMode, uint8_t sampleFlags, BSDFSample *bs) const {
+        Float pr = R.MaxValue(), pt = T.MaxValue();
+        if (!(sampleFlags & BxDF_SampleReflection)) pr = 0;
+        if (!(sampleFlags & BxDF_SampleTransmission)) pt = 0;
+        if (pr == 0 && pt == 0) return false;
+        Vec3f wi = SampleCosineHemisphere(u);
+        if (uc < pr / (pr + pt)) {
+            if (wo.z < 0) wi.z = -wi.z;
+            *bs = MakeBSDFSample(R * InvPi, wi, CosineHemispherePDF(AbsCosTheta(wi)) * pr / (pr + pt),
+                                 BxDF_DiffuseReflection);
+            return true;
+        }
+        if (wo.z > 0) wi.z = -wi.z;
+        *bs = MakeBSDFSample(T * InvPi, wi, CosineHemispherePDF(AbsCosTheta(wi)) * pt / (pr + pt),
+                             BxDF_DiffuseTransmission);
+        return true;
+    }
+    LU_HD Float PDF(Vec3f wo, Vec3f wi, TransportMode, uint8_t sampleFlags) const {
+        Float pr = R.MaxValue(), pt = T.MaxValue();
+        if (!(sampleFlags & BxDF_SampleReflection)) pr = 0;
+        if (!(sampleFlags & BxDF_SampleTransmission)) pt = 0;
+        if (pr == 0 && pt == 0) return 0;
+        Float pdf = CosineHemispherePDF(AbsCosTheta(wi));
+        return SameHemisphere(wo, wi) ? pr / (pr + pt) * pdf : pt / (pr + pt) * pdf;
     }
 };
 
@@ -311,15 +357,17 @@ struct ThinDielectricBxDF {
     }
 };
 
-// ---- Coated diffuse: pbrt-v4's LayeredBxDF<DielectricBxDF, DiffuseBxDF, twoSided = true> ----
-// A dielectric interface (top, z = thickness) over a diffuse base (bottom, z = 0), with an
-// optional homogeneous medium between them (albedo, HG asymmetry g, unit extinction). f, Sample_f
-// and PDF are stochastic estimates (Guo et al. 2018's position-free Monte Carlo), seeded by
-// hashing the directions exactly as pbrt-v4 does (its global seed is 0 by default).
+// ---- Layered BxDF: pbrt-v4's LayeredBxDF<DielectricBxDF, Bottom, twoSided = true> ----
+// A dielectric interface (top, z = thickness) over a base (bottom, z = 0: DiffuseBxDF for the
+// coated diffuse, ConductorBxDF for the coated conductor), with an optional homogeneous medium
+// between them (albedo, HG asymmetry g, unit extinction). f, Sample_f and PDF are stochastic
+// estimates (Guo et al. 2018's position-free Monte Carlo), seeded by hashing the directions
+// exactly as pbrt-v4 does (its global seed is 0 by default).
 
-struct CoatedDiffuseBxDF {
+template <typename BottomBxDF>
+struct LayeredBxDF {
     DielectricBxDF top;
-    DiffuseBxDF bottom;
+    BottomBxDF bottom;
     Float thickness = 0.01f, g = 0;
     SampledSpectrum albedo;
     int maxDepth = 10, nSamples = 1;
@@ -331,8 +379,8 @@ struct CoatedDiffuseBxDF {
     // PDF(wi -> -w) of the presampled exit direction (f() and Sample_f agree; see coated_test).
     bool pbrtExitMIS = true;
 
-    CoatedDiffuseBxDF() = default;
-    LU_HD CoatedDiffuseBxDF(const DielectricBxDF &top, const DiffuseBxDF &bottom, Float thickness,
+    LayeredBxDF() = default;
+    LU_HD LayeredBxDF(const DielectricBxDF &top, const BottomBxDF &bottom, Float thickness,
                             const SampledSpectrum &albedo, Float g, int maxDepth, int nSamples)
         : top(top), bottom(bottom), thickness(Max(thickness, FLT_MIN)), g(g), albedo(albedo),
           maxDepth(maxDepth), nSamples(nSamples) {}
@@ -352,7 +400,7 @@ struct CoatedDiffuseBxDF {
     // One of the two interfaces (pbrt-v4's TopOrBottomBxDF).
     struct Interface {
         const DielectricBxDF *top = nullptr;
-        const DiffuseBxDF *bottom = nullptr;
+        const BottomBxDF *bottom = nullptr;
         LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi, TransportMode mode) const {
             return top ? top->f(wo, wi, mode) : bottom->f(wo, wi, mode);
         }
@@ -643,5 +691,8 @@ struct CoatedDiffuseBxDF {
         return Lerp(0.9f, 1 / (4 * Pi), pdfSum / nSamples);
     }
 };
+
+using CoatedDiffuseBxDF = LayeredBxDF<DiffuseBxDF>;
+using CoatedConductorBxDF = LayeredBxDF<ConductorBxDF>;
 
 }  // namespace lu

@@ -128,6 +128,7 @@ struct BuildContext {
     std::vector<std::string> anonymousMaterialTypes;
     std::map<std::string, uint32_t> namedMaterials;
     std::map<std::string, std::string> namedMaterialTypes;
+    std::set<std::string> namedMaterialsBuilding;  // a mix's children are built first (cycle detection)
     uint32_t defaultMaterial = NoIndex;  // diffuse 0.5, created on first use
 
     // Media by name -> scene.media index.
@@ -135,6 +136,10 @@ struct BuildContext {
 
     // Area light entities already interpreted (ReportUnused once each).
     std::map<int, AreaLightParams> areaLights;
+
+    // Goniometric / IES profile tables already built: file path -> scene.images index and the
+    // profile's description for `lucerna info` (build_lights.cpp).
+    std::map<std::string, std::pair<uint32_t, std::string>> profileTables;
 
     SpectrumRegistry &Registry() { return scene.spectra; }
 };

@@ -1,6 +1,8 @@
-// Lucerna scene builder: light sources (point, spot, distant, infinite, diffuse area), after
-// pbrt-v4's lights.cpp Create() functions: "scale" divided by SpectrumToPhotometric of the
-// emission, "power" / "illuminance" normalizations, and the power-proportional light sampler.
+// Lucerna scene builder: light sources (point, spot, goniometric, distant, infinite, diffuse area),
+// after pbrt-v4's lights.cpp Create() functions: "scale" divided by SpectrumToPhotometric of the
+// emission, "power" / "illuminance" normalizations, IES profiles, the power-proportional light sampler.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +10,7 @@
 #include "lucerna/lights/equal_area.h"
 #include "lucerna/lights/shape_sampling.h"
 #include "lucerna/scene/build_internal.h"
+#include "lucerna/scene/ies.h"
 #include "lucerna/scene/light_build.h"
 
 namespace lu::build {
@@ -152,6 +155,121 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
                                                      ctx.scene.distributions2D, ctx.scene.distData);
 }
 
+// ---- Goniometric lights and IES profiles ----
+
+// Equal-area vertex tables of IES files: (n+1)^2 samples, cells of about 0.4 degrees.
+constexpr int kIESTableResolution = 512;
+
+// pbrt-v4's swapYZ: the goniometric light's image frame has its pole (+z) along the light's +y.
+Transform SwapYZ() { return FromColumns(Vec3f(1, 0, 0), Vec3f(0, 0, 1), Vec3f(0, 1, 0)); }
+
+bool IsIESFile(const std::string &filename) {
+    std::string ext = std::filesystem::path(filename).extension().string();
+    for (char &c : ext) c = char(std::tolower((unsigned char)c));
+    return ext == ".ies";
+}
+
+// Appends a one-channel n x n table to the scene's texels and returns its images index.
+uint32_t AddProfileTable(BuildContext &ctx, const std::vector<float> &values, uint32_t n) {
+    LoadedImage li;
+    li.width = li.height = n;
+    li.channels = 1;
+    li.offset = ctx.scene.texels.size();
+    ctx.scene.texels.insert(ctx.scene.texels.end(), values.begin(), values.end());
+    return AddImageData(ctx, li, WrapMode::Clamp);  // lookups clamp or wrap octahedrally (lights.h)
+}
+
+// The profile table of the IES file named by string parameter `param` of e (cached per file);
+// *description: the line for `lucerna info`.
+uint32_t IESProfileTable(BuildContext &ctx, const LightEntity &e, const std::string &param, std::string *description) {
+    const ParameterDictionary &p = e.params;
+    std::string filename = p.GetOneString(param, "");
+    FileLoc loc = ParamLoc(p, param, e.loc);
+    if (filename.empty()) Fail(loc, "LightSource " + Quoted(e.name) + ": " + Quoted(param) + " is empty");
+    std::string path = LightPath(ctx, filename);
+    if (auto it = ctx.profileTables.find(path); it != ctx.profileTables.end()) {
+        *description = it->second.second;
+        return it->second.first;
+    }
+    ctx.scene.inputFiles.push_back(path);
+    IESProfile prof = ReadIES(path, loc, "the IES file of LightSource " + Quoted(e.name) + " at " + loc.ToString());
+    std::vector<float> table = IESEqualAreaTable(prof, kIESTableResolution);
+    uint32_t index = AddProfileTable(ctx, table, kIESTableResolution + 1);
+    *description = Quoted(filename) + ": " + prof.Describe();
+    ctx.profileTables[path] = {index, *description};
+    return index;
+}
+
+// The profile table of an equal-area image as pbrt-v4's GoniometricLight::Create makes it: square,
+// RGB averaged per texel (or the one channel Y); no negative values (they would emit negative light).
+uint32_t ImageProfileTable(BuildContext &ctx, const LightEntity &e, const std::string &filename, std::string *description) {
+    const ParameterDictionary &p = e.params;
+    FileLoc loc = ParamLoc(p, "filename", e.loc);
+    std::string path = LightPath(ctx, filename);
+    if (auto it = ctx.profileTables.find(path); it != ctx.profileTables.end()) {
+        *description = it->second.second;
+        return it->second.first;
+    }
+    LoadedImage img = LoadImage(ctx, path, false, loc);
+    if (img.width != img.height)
+        Fail(loc, Quoted(filename) + ": image resolution (" + std::to_string(img.width) + ", " + std::to_string(img.height) +
+                      ") is non-square; it is unlikely to be an equal-area map");
+    std::vector<float> table(size_t(img.width) * img.height);
+    const Float *t = ctx.scene.texels.data() + img.offset;
+    double peak = 0;
+    for (size_t i = 0; i < table.size(); ++i) {
+        const Float *px = t + i * img.channels;
+        float v = img.channels >= 3 ? (px[0] + px[1] + px[2]) / 3 : px[0];
+        if (v < 0)
+            Fail(loc, Quoted(filename) + ": negative value " + Number(v) + " at pixel (" + std::to_string(i % img.width) +
+                          ", " + std::to_string(i / img.width) + "); a goniometric light cannot emit negative intensity");
+        table[i] = v;
+        peak = std::max(peak, double(v));
+    }
+    uint32_t index = AddProfileTable(ctx, table, img.width);
+    *description = Quoted(filename) + ": " + std::to_string(img.width) + " x " + std::to_string(img.height) +
+                   " equal-area image (" + (img.channels >= 3 ? "RGB averaged" : "Y") + "), peak " + Number(peak);
+    ctx.profileTables[path] = {index, *description};
+    return index;
+}
+
+// "power" for a light with profile table `profile`: k_e = the integral of the table over the sphere.
+void NormalizeProfilePower(BuildContext &ctx, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner,
+                           Float phi_v, double k_e, Light &l) {
+    (void)ctx;
+    if (!(phi_v > 0)) return;
+    if (!(k_e > 0)) Fail(ParamLoc(p, "power", loc), owner + ": \"power\" cannot be met: the intensity profile is zero everywhere");
+    l.scale *= Float(phi_v / k_e);
+}
+
+// LightSource "goniometric" (pbrt-v4's GoniometricLight::Create; "filename" may also be an IES file).
+void BuildGoniometric(BuildContext &ctx, const LightEntity &e, Light &l, std::string *description) {
+    const ParameterDictionary &p = e.params;
+    const std::string owner = "LightSource \"goniometric\"";
+    std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
+    Float scale = GetScale(p, e.loc, owner);
+    Float phi_v = GetPhotometric(p, "power", e.loc, owner);
+    std::string filename = p.GetOneString("filename", "");
+    // pbrt-v4 warns and renders an empty image; Lucerna refuses.
+    if (filename.empty())
+        Fail(e.loc, owner + ": \"string filename\" must name an equal-area image or an IES file (.ies)");
+    if (!IsFiniteMatrix(e.renderFromObject.mInv))
+        Fail(e.loc, owner + ": the transformation is not invertible: the light's directions are undefined");
+    l.kind = LightKind::Goniometric;
+    l.spectrum = I ? *I : IlluminantSpectrum();
+    l.scale = scale / Photometric(ctx, l.spectrum);
+    if (IsIESFile(filename)) {
+        l.profile = IESProfileTable(ctx, e, "filename", description);
+        l.profileVertices = true;
+    } else {
+        l.profile = ImageProfileTable(ctx, e, filename, description);
+    }
+    NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
+                          ProfileIntegral(ctx.scene.images[l.profile], ctx.scene.texels.data(), l.profileVertices), l);
+    l.renderFromLight = e.renderFromObject * SwapYZ();
+    l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
+}
+
 }  // namespace
 
 void BuildLights(BuildContext &ctx) {
@@ -163,15 +281,29 @@ void BuildLights(BuildContext &ctx) {
         const Transform &ctm = e.renderFromObject;
         const std::string owner = "LightSource " + Quoted(e.name);
         Light l;
+        std::string profile;  // the intensity profile's description, for `lucerna info`
         if (e.name == "point") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Point;
             l.spectrum = I ? *I : IlluminantSpectrum();
             l.scale = GetScale(p, e.loc, owner) / Photometric(ctx, l.spectrum);
             Float phi_v = GetPhotometric(p, "power", e.loc, owner);
-            if (phi_v > 0) l.scale *= phi_v / (4 * Pi);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
-            l.renderFromLight = ctm * TranslateTransform(from);
+            if (p.Has("iesfile")) {
+                // Lucerna's extension: a point light with an IES profile is the goniometric light
+                // of that file at "from" (docs/lights.md).
+                l.kind = LightKind::Goniometric;
+                l.profile = IESProfileTable(ctx, e, "iesfile", &profile);
+                l.profileVertices = true;
+                NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
+                                      ProfileIntegral(s.images[l.profile], s.texels.data(), true), l);
+                if (!IsFiniteMatrix(ctm.mInv))
+                    Fail(e.loc, owner + ": the transformation is not invertible: the profile's directions are undefined");
+                l.renderFromLight = ctm * TranslateTransform(from) * SwapYZ();
+            } else {
+                if (phi_v > 0) l.scale *= phi_v / (4 * Pi);
+                l.renderFromLight = ctm * TranslateTransform(from);
+            }
             l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
         } else if (e.name == "spot") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
@@ -196,7 +328,13 @@ void BuildLights(BuildContext &ctx) {
             l.cosFalloffStart = std::cos(Radians(coneAngle - coneDelta));
             l.scale = scale / Photometric(ctx, l.spectrum);
             Float phi_v = GetPhotometric(p, "power", e.loc, owner);
-            if (phi_v > 0) {
+            if (p.Has("iesfile")) {
+                // Lucerna's extension: the IES profile times the cone falloff, nadir along the axis.
+                l.profile = IESProfileTable(ctx, e, "iesfile", &profile);
+                l.profileVertices = true;
+                NormalizeProfilePower(ctx, p, e.loc, owner, phi_v,
+                                      ProfileIntegral(s.images[l.profile], s.texels.data(), true, &l), l);
+            } else if (phi_v > 0) {
                 Float k_e = 2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2);
                 if (k_e > 0) l.scale *= phi_v / k_e;
             }
@@ -219,18 +357,23 @@ void BuildLights(BuildContext &ctx) {
             BuildInfinite(ctx, e, l);
         } else if (e.name == "collimated") {
             BuildCollimated(ctx, e, l);
-        } else if (e.name == "goniometric" || e.name == "projection") {
+        } else if (e.name == "goniometric") {
+            BuildGoniometric(ctx, e, l, &profile);
+        } else if (e.name == "projection") {
             FailUnsupported(e.loc, "LightSource " + Quoted(e.name));
         } else {
             Fail(e.loc, "unknown light type " + Quoted(e.name));
         }
         // A singular or projective CTM can leave a light without a position or direction.
-        if ((l.kind == LightKind::Point || l.kind == LightKind::Spot) && !IsFinite3(l.position))
+        if ((l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric) &&
+            !IsFinite3(l.position))
             Fail(e.loc, owner + ": the transformation sends the light's position to infinity");
         if ((l.kind == LightKind::Spot || l.kind == LightKind::Distant) && !IsFinite3(l.direction))
             Fail(e.loc, owner + ": the transformation is singular and collapses the light's direction");
         p.ReportUnused(ctx.diag, owner);
         s.stats.lightsByType[e.name]++;
+        if (!profile.empty())
+            s.stats.lightProfiles.push_back("light " + std::to_string(s.lights.size()) + ": " + e.name + " " + profile);
         if (l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite)
             s.infiniteLights.push_back(uint32_t(s.lights.size()));
         s.SetOrigin(s.lightOrigin, s.lights.size(), owner + " at " + e.loc.ToString());
@@ -255,7 +398,7 @@ Float MaxCornerDistance(const Transform &t, const Vec3f &c, const Vec3f &pMin, c
 // assumes no scale), the other branches at transformed object points: both are covered.
 void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Float *radius) {
     *radius = -1;
-    if (l.kind == LightKind::Point || l.kind == LightKind::Spot) {
+    if (l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric) {
         *center = l.position;
         *radius = 0;
         return;

@@ -70,33 +70,74 @@ uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap) 
 namespace {
 
 bool IsUnsupportedMaterialType(const std::string &t) {
-    static const char *names[] = {"coatedconductor", "diffusetransmission", "measured", "hair", "subsurface", "mix"};
+    static const char *names[] = {"measured", "hair", "subsurface"};
     for (const char *n : names)
         if (t == n) return true;
     return false;
 }
 
-// "eta" of dielectrics and coated diffuse: a float (GetFloatArray("eta")[0]) or a spectrum.
-Spectrum ReadEta(BuildContext &ctx, const ParameterDictionary &p) {
-    if (p.TypeOf("eta") == "float") {
-        std::vector<double> v = p.GetFloatArray("eta");
+// "eta" of dielectrics and coated diffuse ("interface.eta" of the coated conductor): a float
+// (GetFloatArray(name)[0]) or a spectrum.
+Spectrum ReadEta(BuildContext &ctx, const ParameterDictionary &p, const std::string &name = "eta") {
+    if (p.TypeOf(name) == "float") {
+        std::vector<double> v = p.GetFloatArray(name);
         return Spectrum::Const(Float(v.empty() ? 1.5 : v[0]));
     }
-    if (p.TypeOf("eta") == "texture") FailUnsupported(ParamLoc(p, "eta", {}), "textured \"eta\"");
-    if (std::optional<Spectrum> s = GetSpectrum(ctx, p, "eta", SpectrumType::Unbounded)) return *s;
+    if (p.TypeOf(name) == "texture") FailUnsupported(ParamLoc(p, name, {}), "textured " + Quoted(name));
+    if (std::optional<Spectrum> s = GetSpectrum(ctx, p, name, SpectrumType::Unbounded)) return *s;
     return Spectrum::Const(1.5f);
 }
 
+// PREFIXuroughness / PREFIXvroughness, else PREFIXroughness (default 0).
+void ReadRoughness(BuildContext &ctx, const ParameterDictionary &p, FloatTexture *uRough, FloatTexture *vRough,
+                   const std::string &prefix = "") {
+    std::optional<FloatTexture> u = GetFloatTextureOrNull(ctx, p, prefix + "uroughness");
+    std::optional<FloatTexture> v = GetFloatTextureOrNull(ctx, p, prefix + "vroughness");
+    *uRough = u ? *u : GetFloatTexture(ctx, p, prefix + "roughness", 0);
+    *vRough = v ? *v : GetFloatTexture(ctx, p, prefix + "roughness", 0);
+}
 void ReadRoughness(BuildContext &ctx, const ParameterDictionary &p, Material &m) {
-    std::optional<FloatTexture> u = GetFloatTextureOrNull(ctx, p, "uroughness");
-    std::optional<FloatTexture> v = GetFloatTextureOrNull(ctx, p, "vroughness");
-    m.uRoughness = u ? *u : GetFloatTexture(ctx, p, "roughness", 0);
-    m.vRoughness = v ? *v : GetFloatTexture(ctx, p, "roughness", 0);
+    ReadRoughness(ctx, p, &m.uRoughness, &m.vRoughness);
     m.remapRoughness = p.GetOneBool("remaproughness", true);
 }
 
-Spectrum NamedOrFail(BuildContext &ctx, const std::string &name, const FileLoc &loc) {
-    return NamedOrFileSpectrum(ctx, name, loc);
+// A conductor's complex index: "reflectance", or ETANAME / KNAME (default copper).
+void ReadConductorIndex(BuildContext &ctx, const ParameterDictionary &p, Material &m, const std::string &etaName,
+                        const std::string &kName, const std::string &type, const FileLoc &loc) {
+    std::optional<SpectrumTexture> eta = GetSpectrumTextureOrNull(ctx, p, etaName, SpectrumType::Unbounded);
+    std::optional<SpectrumTexture> k = GetSpectrumTextureOrNull(ctx, p, kName, SpectrumType::Unbounded);
+    std::optional<SpectrumTexture> refl = GetSpectrumTextureOrNull(ctx, p, "reflectance", SpectrumType::Albedo);
+    if (refl && (eta || k))
+        Fail(loc, "for the " + type + " material, \"reflectance\" and " + Quoted(etaName) + "/" + Quoted(kName) +
+                      " can't both be provided");
+    if (refl) {
+        m.useReflectance = true;
+        m.reflectance = *refl;
+    } else {
+        m.conductorEta = eta ? *eta : ConstantSpectrumTexture(NamedOrFileSpectrum(ctx, "metal-Cu-eta", loc), SpectrumType::Unbounded);
+        m.conductorK = k ? *k : ConstantSpectrumTexture(NamedOrFileSpectrum(ctx, "metal-Cu-k", loc), SpectrumType::Unbounded);
+    }
+}
+
+uint32_t CreateNamedMaterial(BuildContext &ctx, const std::string &name, const SceneEntity &e);
+
+// A mix's child: a named material, built now if it is not yet (MakeNamedMaterial order does
+// not matter); not "interface" (pbrt-v4 refuses it), not the mix itself.
+uint32_t MixChild(BuildContext &ctx, const std::string &name, const FileLoc &at, const std::string &owner) {
+    auto built = ctx.namedMaterials.find(name);
+    uint32_t index;
+    if (built != ctx.namedMaterials.end()) {
+        index = built->second;
+    } else {
+        auto it = ctx.desc.namedMaterials.find(name);
+        if (it == ctx.desc.namedMaterials.end()) Fail(at, owner + ": named material " + Quoted(name) + " not found");
+        if (ctx.namedMaterialsBuilding.count(name))
+            Fail(at, owner + ": named material " + Quoted(name) + " contains itself (a cycle of mix materials)");
+        index = CreateNamedMaterial(ctx, name, it->second);
+    }
+    if (index == NoIndex)
+        Fail(at, owner + ": " + Quoted(name) + ": an \"interface\" material cannot be used as an element of the \"mix\" material");
+    return index;
 }
 
 // pbrt-v4's Material::Create: the material's index in scene.materials, or NoIndex for
@@ -115,19 +156,34 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
         m.reflectance = GetSpectrumTexture(ctx, p, "reflectance", SpectrumType::Albedo, Spectrum::Const(0.5f));
     } else if (type == "conductor") {
         m.kind = MaterialKind::Conductor;
-        std::optional<SpectrumTexture> eta = GetSpectrumTextureOrNull(ctx, p, "eta", SpectrumType::Unbounded);
-        std::optional<SpectrumTexture> k = GetSpectrumTextureOrNull(ctx, p, "k", SpectrumType::Unbounded);
-        std::optional<SpectrumTexture> refl = GetSpectrumTextureOrNull(ctx, p, "reflectance", SpectrumType::Albedo);
-        if (refl && (eta || k))
-            Fail(loc, "for the conductor material, \"reflectance\" and \"eta\"/\"k\" can't both be provided");
-        if (refl) {
-            m.useReflectance = true;
-            m.reflectance = *refl;
-        } else {
-            m.conductorEta = eta ? *eta : ConstantSpectrumTexture(NamedOrFail(ctx, "metal-Cu-eta", loc), SpectrumType::Unbounded);
-            m.conductorK = k ? *k : ConstantSpectrumTexture(NamedOrFail(ctx, "metal-Cu-k", loc), SpectrumType::Unbounded);
-        }
+        ReadConductorIndex(ctx, p, m, "eta", "k", "conductor", loc);
         ReadRoughness(ctx, p, m);
+    } else if (type == "coatedconductor") {
+        m.kind = MaterialKind::CoatedConductor;
+        ReadRoughness(ctx, p, &m.uRoughness, &m.vRoughness, "interface.");
+        m.thickness = GetFloatTexture(ctx, p, "thickness", 0.01f);
+        m.eta = ReadEta(ctx, p, "interface.eta");
+        ReadRoughness(ctx, p, &m.conductorURoughness, &m.conductorVRoughness, "conductor.");
+        ReadConductorIndex(ctx, p, m, "conductor.eta", "conductor.k", "coated conductor", loc);
+        m.maxDepth = p.GetOneInt("maxdepth", 10);
+        m.nSamples = p.GetOneInt("nsamples", 1);
+        m.g = GetFloatTexture(ctx, p, "g", 0);
+        m.albedo = GetSpectrumTexture(ctx, p, "albedo", SpectrumType::Albedo, Spectrum::Const(0));
+        m.remapRoughness = p.GetOneBool("remaproughness", true);
+    } else if (type == "diffusetransmission") {
+        m.kind = MaterialKind::DiffuseTransmission;
+        m.reflectance = GetSpectrumTexture(ctx, p, "reflectance", SpectrumType::Albedo, Spectrum::Const(0.25f));
+        m.transmittance = GetSpectrumTexture(ctx, p, "transmittance", SpectrumType::Albedo, Spectrum::Const(0.25f));
+        m.scale = Float(p.GetOneFloat("scale", 1));
+    } else if (type == "mix") {
+        m.kind = MaterialKind::Mix;
+        std::vector<std::string> names = p.GetStringArray("materials");
+        FileLoc at = ParamLoc(p, "materials", loc);
+        if (names.size() != 2)
+            Fail(at, owner + ": must provide two values for \"string materials\" for the mix material (got " +
+                         std::to_string(names.size()) + ")");
+        for (int i = 0; i < 2; ++i) m.mixMaterials[i] = MixChild(ctx, names[i], at, owner);
+        m.amount = GetFloatTexture(ctx, p, "amount", 0.5f);
     } else if (type == "dielectric") {
         m.kind = MaterialKind::Dielectric;
         m.eta = ReadEta(ctx, p);
@@ -150,7 +206,17 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
     }
     // Bump and normal mapping change the shading normal: refuse rather than ignore.
     if (p.Has("displacement")) FailUnsupported(ParamLoc(p, "displacement", loc), "material \"displacement\" (bump mapping)");
-    if (p.Has("normalmap")) FailUnsupported(ParamLoc(p, "normalmap", loc), "material \"normalmap\"");
+    // pbrt-v4 reads "normalmap" for every material and the mix ignores it: here it is reported unused.
+    if (m.kind != MaterialKind::Mix) {
+        std::string normalMap = p.GetOneString("normalmap", "");
+        if (!normalMap.empty()) {
+            FileLoc at = ParamLoc(p, "normalmap", loc);
+            // Linear encoding, as pbrt-v4 (ColorEncoding::Linear): 8-bit PNG values / 255.
+            LoadedImage img = LoadImage(ctx, ResolveScenePath(ctx, "", normalMap), true, at);
+            if (img.channels < 3) Fail(at, Quoted(normalMap) + ": normal map image must contain R, G, and B channels");
+            m.normalMap = AddImageData(ctx, img, WrapMode::Repeat);
+        }
+    }
     CheckMaterialValues(m, ctx.scene.floatTextures, p, loc, owner);
     p.ReportUnused(ctx.diag, owner);
     uint32_t index = uint32_t(ctx.scene.materials.size());
@@ -174,22 +240,31 @@ uint32_t DefaultMaterial(BuildContext &ctx) {
     return ctx.defaultMaterial;
 }
 
+namespace {
+
+uint32_t CreateNamedMaterial(BuildContext &ctx, const std::string &name, const SceneEntity &e) {
+    std::string type = e.params.GetOneString("type", "");
+    if (!e.params.Has("type"))
+        Fail(e.loc, "named material " + Quoted(name) + ": \"string type\" not provided in its parameters");
+    ctx.namedMaterialTypes[name] = type;
+    ctx.namedMaterialsBuilding.insert(name);
+    // An unsupported material is collected and replaced by the default one, so that the
+    // shapes using it are still checked.
+    uint32_t m = NoIndex;
+    if (!ctx.Collect([&] { m = CreateMaterial(ctx, type, e.params, e.loc, "MakeNamedMaterial " + Quoted(name)); }))
+        m = DefaultMaterial(ctx);
+    ctx.namedMaterialsBuilding.erase(name);
+    ctx.namedMaterials[name] = m;
+    return m;
+}
+
+}  // namespace
+
 void BuildMaterials(BuildContext &ctx) {
-    // Named materials first (pbrt-v4's CreateMaterials order), then the anonymous ones.
-    for (const auto &named : ctx.desc.namedMaterials) {
-        const std::string &name = named.first;   // (no structured binding: clang 14 cannot capture one)
-        const auto &e = named.second;
-        std::string type = e.params.GetOneString("type", "");
-        if (!e.params.Has("type"))
-            Fail(e.loc, "named material " + Quoted(name) + ": \"string type\" not provided in its parameters");
-        ctx.namedMaterialTypes[name] = type;
-        // An unsupported material is collected and replaced by the default one, so that the
-        // shapes using it are still checked.
-        uint32_t m = NoIndex;
-        if (!ctx.Collect([&] { m = CreateMaterial(ctx, type, e.params, e.loc, "MakeNamedMaterial " + Quoted(name)); }))
-            m = DefaultMaterial(ctx);
-        ctx.namedMaterials[name] = m;
-    }
+    // Named materials first (pbrt-v4's CreateMaterials order; a mix builds its children first),
+    // then the anonymous ones.
+    for (const auto &named : ctx.desc.namedMaterials)
+        if (!ctx.namedMaterials.count(named.first)) CreateNamedMaterial(ctx, named.first, named.second);
     for (const SceneEntity &e : ctx.desc.materials) {
         ctx.anonymousMaterialTypes.push_back(e.name);
         uint32_t m = NoIndex;

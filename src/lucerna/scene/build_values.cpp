@@ -1,6 +1,7 @@
 // Lucerna scene builder: material values that would render NaN, infinity or negative radiance
 // (negative roughness, eta <= 0, |g| > 1, ...) are located errors. pbrt-v4 accepts most of them
 // and renders NaN or black; here they stop the build with the parameter's FILE:LINE:COL.
+#include <cmath>
 #include <cstdio>
 
 #include "lucerna/scene/build_internal.h"
@@ -88,6 +89,7 @@ void CheckScale(const SpectrumTexture &t, const ParameterDictionary &p, const ch
 
 void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
                          const FileLoc &loc, const std::string &owner) {
+    bool coatedConductor = m.kind == MaterialKind::CoatedConductor;
     bool rough = m.kind == MaterialKind::Conductor || m.kind == MaterialKind::Dielectric ||
                  m.kind == MaterialKind::CoatedDiffuse;
     if (rough) {
@@ -95,21 +97,36 @@ void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nod
         CheckRange(m.uRoughness, nodes, 0, Infinity, p, {"uroughness", "roughness"}, loc, owner, "must not be negative");
         CheckRange(m.vRoughness, nodes, 0, Infinity, p, {"vroughness", "roughness"}, loc, owner, "must not be negative");
     }
+    if (coatedConductor) {
+        CheckRange(m.uRoughness, nodes, 0, Infinity, p, {"interface.uroughness", "interface.roughness"}, loc, owner,
+                   "must not be negative");
+        CheckRange(m.vRoughness, nodes, 0, Infinity, p, {"interface.vroughness", "interface.roughness"}, loc, owner,
+                   "must not be negative");
+        CheckRange(m.conductorURoughness, nodes, 0, Infinity, p, {"conductor.uroughness", "conductor.roughness"}, loc,
+                   owner, "must not be negative");
+        CheckRange(m.conductorVRoughness, nodes, 0, Infinity, p, {"conductor.vroughness", "conductor.roughness"}, loc,
+                   owner, "must not be negative");
+    }
     CheckScale(m.reflectance, p, "reflectance", loc, owner);
     CheckScale(m.albedo, p, "albedo", loc, owner);
-    CheckScale(m.conductorEta, p, "eta", loc, owner);
-    CheckScale(m.conductorK, p, "k", loc, owner);
+    CheckScale(m.transmittance, p, "transmittance", loc, owner);
+    CheckScale(m.conductorEta, p, coatedConductor ? "conductor.eta" : "eta", loc, owner);
+    CheckScale(m.conductorK, p, coatedConductor ? "conductor.k" : "k", loc, owner);
     bool hasEta = m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric ||
-                  m.kind == MaterialKind::CoatedDiffuse;
+                  m.kind == MaterialKind::CoatedDiffuse || coatedConductor;
+    const char *etaName = coatedConductor ? "interface.eta" : "eta";
     if (hasEta && m.eta.kind == SpectrumKind::Constant && !(m.eta.scale > 0))
-        Fail(ParamLoc(p, "eta", loc), owner + ": \"eta\" (index of refraction) must be positive (got " + Number(m.eta.scale) + ")");
-    if (m.kind == MaterialKind::CoatedDiffuse) {
+        Fail(ParamLoc(p, etaName, loc), owner + ": " + Quoted(etaName) + " (index of refraction) must be positive (got " +
+                                            Number(m.eta.scale) + ")");
+    if (m.kind == MaterialKind::CoatedDiffuse || coatedConductor) {
         CheckRange(m.thickness, nodes, 0, Infinity, p, {"thickness"}, loc, owner, "must not be negative");
         // The Henyey-Greenstein phase function is negative for |g| > 1.
         CheckRange(m.g, nodes, -1, 1, p, {"g"}, loc, owner, "must be in [-1, 1]");
         if (m.nSamples < 1) Fail(ParamLoc(p, "nsamples", loc), owner + ": \"nsamples\" must be at least 1 (got " + std::to_string(m.nSamples) + ")");
         if (m.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", loc), owner + ": \"maxdepth\" must not be negative (got " + std::to_string(m.maxDepth) + ")");
     }
+    if (m.kind == MaterialKind::DiffuseTransmission && !std::isfinite(m.scale))
+        Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must be finite (got " + Number(m.scale) + ")");
 }
 
 }  // namespace lu::build

@@ -32,6 +32,9 @@ struct SceneStats {
     std::string filterType = "gaussian";
     std::string integratorAsRead;                // the Integrator directive's name ("" when absent)
     std::string samplerName = "zsobol";          // the Sampler directive's (pbrt-v4's default: zsobol)
+    // One line per light with an intensity profile (goniometric image or IES file):
+    // "light 3: goniometric \"a.ies\": LM-63-2002, type C, ..."
+    std::vector<std::string> lightProfiles;
 };
 
 // Owns every array the SceneView spans point into.

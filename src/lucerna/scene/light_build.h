@@ -1,5 +1,6 @@
-// Lucerna (host): light power (pbrt-v4 Light::Phi), the power light-selection CDF of
-// lights/light_sampler.h (PowerLightSampler) and the image infinite light's distributions.
+// Lucerna (host): light power (pbrt-v4 Light::Phi; goniometric and IES profiles included), the
+// power light-selection CDF of lights/light_sampler.h (PowerLightSampler) and the image infinite
+// light's distributions.
 #pragma once
 
 #include <algorithm>
@@ -12,13 +13,38 @@
 
 namespace lu {
 
+// The integral over the sphere of a profile table, without scale and spectrum: pbrt-v4's
+// GoniometricLight::Phi for images (4 pi times the mean texel: each subtends 4 pi / N sr); for a
+// vertex table, 4 pi times the mean of its interpolant (midpoint rule over the n x n cells).
+// falloff (optional): a factor of the light-space direction (a spot light's cone, whose axis is
+// the table's -z).
+inline double ProfileIntegral(const ImageData &im, const Float *texels, bool vertices, const Light *spot = nullptr) {
+    uint32_t n = vertices ? im.width - 1 : im.width;
+    double sum = 0;
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            Vec2f uv((Float(x) + 0.5f) / Float(n), (Float(y) + 0.5f) / Float(n));
+            double v = vertices ? ProfileValueAt(im, texels, uv, true) : texels[im.offset + uint64_t(y) * im.width + x];
+            if (spot) {
+                Vec3f w = EqualAreaSquareToSphere(uv);
+                v *= SpotFalloff(*spot, Vec3f(w.x, w.y, -w.z));
+            }
+            sum += v;
+        }
+    return 4 * Pi * sum / (double(n) * n);
+}
+
 // pbrt-v4's Light::Phi(lambda): emitted power at the sampled wavelengths.
 inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const SampledWavelengths &lambda) {
     SampledSpectrum spec = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
     switch (l.kind) {
     case LightKind::Point: return spec * (4 * Pi);
     case LightKind::Spot:
+        if (l.profile != NoIndex)
+            return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr, l.profileVertices, &l));
         return spec * (2 * Pi * ((1 - l.cosFalloffStart) + (l.cosFalloffStart - l.cosFalloffEnd) / 2));
+    case LightKind::Goniometric:
+        return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr, l.profileVertices));
     case LightKind::Distant: return spec * (Pi * Sqr(l.sceneRadius));
     case LightKind::DiffuseArea:
         return spec * (Pi * (l.twoSided ? 2 : 1) * ShapeArea(s, s.shapes[l.shape], l.primitive));

@@ -50,6 +50,7 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     o << "shapes: " << Counts(st.shapesByType) << "\n";
     o << "triangles: " << st.triangles << "\n";
     o << "lights: " << Counts(st.lightsByType) << "\n";
+    for (const std::string &l : st.lightProfiles) o << "  " << l << "\n";
     o << "materials: " << Counts(st.materialsByType) << "\n";
     if (!st.mediaByType.empty()) o << "media: " << Counts(st.mediaByType) << "\n";
     o << "textures: " << st.floatTextures << " float, " << st.spectrumTextures << " spectrum\n";
