@@ -210,6 +210,19 @@ MediumGrid AddMajorantGrid(HostScene &s, const std::vector<Float> &values) {
     return g;
 }
 
+// Majorants of a one-channel density grid: the largest density that can influence each majorant
+// voxel (sigma_t is applied per ray).
+MediumGrid DensityMajorants(HostScene &s, const MediumGrid &dg) {
+    std::vector<Float> maj;
+    for (uint32_t z = 0; z < kMajorantRes; ++z)
+        for (uint32_t y = 0; y < kMajorantRes; ++y)
+            for (uint32_t x = 0; x < kMajorantRes; ++x)
+                maj.push_back(GridMax(dg, MajorantVoxel(x, y, z), [&](int i, int j, int k) {
+                    return s.mediumData[dg.offset + (uint64_t(k) * dg.ny + j) * dg.nx + i];
+                }));
+    return AddMajorantGrid(s, maj);
+}
+
 // An "rgb NAME" array of n RGB triples as a 4-channel spectrum grid (sigmoid coefficients and
 // scale per sample); channels == 0 when absent.
 MediumGrid AddRGBGrid(BuildContext &ctx, const MediumEntity &e, const std::string &name, SpectrumType type,
@@ -304,16 +317,7 @@ void BuildUniformGrid(BuildContext &ctx, const MediumEntity &e, Medium &m) {
     }
     if (!temperature.empty()) m.temperature = AddFloatGrid(s, temperature, nx, ny, nz);
     m.emissive = !temperature.empty() || haveLe;
-    // Majorants: the largest density that can influence each voxel (sigma_t is applied per ray).
-    std::vector<Float> maj;
-    const MediumGrid dg = m.density;
-    for (uint32_t z = 0; z < kMajorantRes; ++z)
-        for (uint32_t y = 0; y < kMajorantRes; ++y)
-            for (uint32_t x = 0; x < kMajorantRes; ++x)
-                maj.push_back(GridMax(dg, MajorantVoxel(x, y, z), [&](int i, int j, int k) {
-                    return s.mediumData[dg.offset + (uint64_t(k) * dg.ny + j) * dg.nx + i];
-                }));
-    m.majorant = AddMajorantGrid(s, maj);
+    m.majorant = DensityMajorants(s, m.density);
 }
 
 // ---- nanovdb ----
@@ -470,15 +474,7 @@ void BuildNanoVDB(BuildContext &ctx, const MediumEntity &e, Medium &m) {
     if (tg) m.temperature = fill(*tg, sameMap, "temperature");
     m.LeGrid = MediumGrid();   // nx == 0: the constant m.LeScale (pbrt-v4's nanovdb Lescale)
     m.emissive = tg && m.LeScale > 0;
-    std::vector<Float> maj;
-    const MediumGrid dgrid = m.density;
-    for (uint32_t z = 0; z < kMajorantRes; ++z)
-        for (uint32_t y = 0; y < kMajorantRes; ++y)
-            for (uint32_t x = 0; x < kMajorantRes; ++x)
-                maj.push_back(GridMax(dgrid, MajorantVoxel(x, y, z), [&](int i, int j, int k) {
-                    return s.mediumData[dgrid.offset + (uint64_t(k) * dgrid.ny + j) * dgrid.nx + i];
-                }));
-    m.majorant = AddMajorantGrid(s, maj);
+    m.majorant = DensityMajorants(s, m.density);
 }
 
 void BuildRGBGrid(BuildContext &ctx, const MediumEntity &e, Medium &m) {
