@@ -21,23 +21,8 @@ TEST(FeatureScenes, SamplersAndCamerasBuildCleanAndRender) {
     ASSERT_EQ(files.size(), 5u);
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
-        Diagnostics diag;
-        diag.quiet = true;
-        BuildOptions opts;
-        opts.resX = 32;
-        opts.resY = 32;
-        auto scene = LoadScene(file, diag, opts);
-        EXPECT_TRUE(diag.unsupported.empty()) << diag.unsupported[0];
-        // (the equal-area scene is square; forcing 32x32 keeps it so)
-        EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
-        auto r = RenderScene(*scene, 4, 5);
-        EXPECT_EQ(r.stats.rejected, 0u);
-        double sum = 0;
-        for (float v : r.image.pixels) {
-            ASSERT_TRUE(std::isfinite(v));
-            sum += v;
-        }
-        EXPECT_GT(sum / double(r.image.pixels.size()), 0.05);
+        auto scene = LoadCleanFeatureScene(file, 32, 32);   // the equal-area scene is square; forcing 32x32 keeps it so
+        ExpectRendersFiniteAndLit(*scene);
     }
 }
 

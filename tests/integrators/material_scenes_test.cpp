@@ -19,22 +19,8 @@ TEST(MaterialScenes, FeatureScenesBuildCleanAndRenderFinite) {
     ASSERT_EQ(files.size(), 1u);
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
-        Diagnostics diag;
-        diag.quiet = true;
-        BuildOptions opts;
-        opts.resX = 48;
-        opts.resY = 24;
-        auto scene = LoadScene(file, diag, opts);
-        EXPECT_TRUE(diag.unsupported.empty()) << diag.unsupported[0];
-        EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
-        auto r = RenderScene(*scene, 4, 5);
-        EXPECT_EQ(r.stats.rejected, 0u);
-        double sum = 0;
-        for (float v : r.image.pixels) {
-            ASSERT_TRUE(std::isfinite(v));
-            sum += v;
-        }
-        EXPECT_GT(sum / r.image.pixels.size(), 0.05);
+        auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
+        ExpectRendersFiniteAndLit(*scene);
     }
 }
 

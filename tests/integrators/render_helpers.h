@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -40,6 +41,19 @@ inline std::vector<std::string> FeatureSceneFiles(std::initializer_list<const ch
     }
     std::sort(files.begin(), files.end());
     return files;
+}
+
+// A feature scene loaded at resX x resY that must read without an unsupported feature or a warning.
+inline std::unique_ptr<HostScene> LoadCleanFeatureScene(const std::string &file, int resX, int resY) {
+    Diagnostics diag;
+    diag.quiet = true;
+    BuildOptions opts;
+    opts.resX = resX;
+    opts.resY = resY;
+    auto scene = LoadScene(file, diag, opts);
+    EXPECT_TRUE(diag.unsupported.empty()) << diag.unsupported[0];
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+    return scene;
 }
 
 // The scene's own settings with a fixed pass count, quiet.
@@ -89,6 +103,18 @@ inline MeanSE RegionMean(const Image &img, int c, int x0, int y0, int x1, int y1
     double var = std::max(0.0, s2 / n - m.mean * m.mean);
     m.se = std::sqrt(var / std::max(1, n - 1));
     return m;
+}
+
+// Renders 4 spp (maxdepth 5): no rejected sample, every value finite, and a mean above 0.05.
+inline void ExpectRendersFiniteAndLit(const HostScene &scene) {
+    auto r = RenderScene(scene, 4, 5);
+    EXPECT_EQ(r.stats.rejected, 0u);
+    double sum = 0;
+    for (float v : r.image.pixels) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+    }
+    EXPECT_GT(sum / double(r.image.pixels.size()), 0.05);
 }
 
 }  // namespace lu::test

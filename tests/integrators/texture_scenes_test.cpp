@@ -19,23 +19,9 @@ TEST(TextureScenes, FeatureScenesBuildCleanAndRenderFinite) {
     ASSERT_EQ(files.size(), 4u);
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
-        Diagnostics diag;
-        diag.quiet = true;
-        BuildOptions opts;
-        opts.resX = 48;
-        opts.resY = 24;
-        auto scene = LoadScene(file, diag, opts);
-        EXPECT_TRUE(diag.unsupported.empty()) << diag.unsupported[0];
-        EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+        auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
         EXPECT_GT(scene->stats.floatTextures + scene->stats.spectrumTextures, 3);
-        auto r = RenderScene(*scene, 4, 5);
-        EXPECT_EQ(r.stats.rejected, 0u);
-        double sum = 0;
-        for (float v : r.image.pixels) {
-            ASSERT_TRUE(std::isfinite(v));
-            sum += v;
-        }
-        EXPECT_GT(sum / r.image.pixels.size(), 0.05);
+        ExpectRendersFiniteAndLit(*scene);
     }
 }
 
