@@ -11,17 +11,11 @@ namespace lu::build {
 
 namespace {
 
-std::string Num(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%g", x);
-    return buf;
-}
-
 // A float parameter that must be finite and positive (when present).
 double PositiveFloat(const ParameterDictionary &p, const std::string &name, double def, const FileLoc &loc) {
     double v = p.GetOneFloat(name, def);
     if (!(v > 0) || !std::isfinite(v))
-        Fail(ParamLoc(p, name, loc), "collimated light: " + Quoted(name) + " must be positive (got " + Num(v) + ")");
+        Fail(ParamLoc(p, name, loc), "collimated light: " + Quoted(name) + " must be positive (got " + FormatNumber(v) + ")");
     return v;
 }
 
@@ -30,11 +24,11 @@ double PositiveFloat(const ParameterDictionary &p, const std::string &name, doub
 Spectrum LaserLine(BuildContext &ctx, const ParameterDictionary &p, const FileLoc &loc) {
     double lambda0 = p.GetOneFloat("wavelength", 0);
     if (!(lambda0 >= 360 && lambda0 <= 830))
-        Fail(ParamLoc(p, "wavelength", loc), "collimated light: \"wavelength\" must be in [360, 830] nm (got " + Num(lambda0) + ")");
+        Fail(ParamLoc(p, "wavelength", loc), "collimated light: \"wavelength\" must be in [360, 830] nm (got " + FormatNumber(lambda0) + ")");
     double bw = p.GetOneFloat("bandwidth", 1);
     if (!(bw >= 1 && bw <= 470))
         Fail(ParamLoc(p, "bandwidth", loc), "collimated light: \"bandwidth\" (full width at half maximum) must be in [1, 470] nm "
-                                            "(got " + Num(bw) + "; spectra are tabulated at 1 nm)");
+                                            "(got " + FormatNumber(bw) + "; spectra are tabulated at 1 nm)");
     std::vector<double> lambdas, values;
     for (int l = 360; l <= 830; ++l) {
         lambdas.push_back(l);
@@ -101,7 +95,7 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
     // ---- Scale: "power" watts (radiometric, over 360-830 nm), else pbrt-v4's photometric scale ----
     double scale = p.GetOneFloat("scale", 1);
     if (!(scale >= 0) || !std::isfinite(scale))
-        Fail(ParamLoc(p, "scale", e.loc), owner + ": \"scale\" must not be negative (got " + Num(scale) + ")");
+        Fail(ParamLoc(p, "scale", e.loc), owner + ": \"scale\" must not be negative (got " + FormatNumber(scale) + ")");
     Float area = BeamProfileIntegral(l.beamRadius, l.beamWaist);
     if (!(area > 0)) Fail(ParamLoc(p, "radius", e.loc), "collimated light: the disc is too small (zero area in float)");
     if (p.Has("power")) {

@@ -19,17 +19,11 @@ namespace lu::build {
 
 namespace {
 
-std::string Number(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%g", x);
-    return buf;
-}
-
 // "scale": any finite value >= 0 (0 turns the light off). A negative one would emit negative
 // radiance, which the film rejects sample by sample: the light would vanish without a word.
 Float GetScale(const ParameterDictionary &p, const FileLoc &loc, const std::string &owner) {
     double scale = p.GetOneFloat("scale", 1);
-    if (!(scale >= 0)) Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must not be negative (got " + Number(scale) + ")");
+    if (!(scale >= 0)) Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must not be negative (got " + FormatNumber(scale) + ")");
     return Float(scale);
 }
 
@@ -39,7 +33,7 @@ Float GetPhotometric(const ParameterDictionary &p, const std::string &name, cons
     if (!p.Has(name)) return -1;
     double v = p.GetOneFloat(name, -1);
     if (!(v > 0))
-        Fail(ParamLoc(p, name, loc), owner + ": " + Quoted(name) + " must be positive (got " + Number(v) +
+        Fail(ParamLoc(p, name, loc), owner + ": " + Quoted(name) + " must be positive (got " + FormatNumber(v) +
                                          "; use \"scale\" 0 to turn a light off)");
     return Float(v);
 }
@@ -221,14 +215,14 @@ uint32_t ImageProfileTable(BuildContext &ctx, const LightEntity &e, const std::s
         const Float *px = t + i * img.channels;
         float v = img.channels >= 3 ? (px[0] + px[1] + px[2]) / 3 : px[0];
         if (v < 0)
-            Fail(loc, Quoted(filename) + ": negative value " + Number(v) + " at pixel (" + std::to_string(i % img.width) +
+            Fail(loc, Quoted(filename) + ": negative value " + FormatNumber(v) + " at pixel (" + std::to_string(i % img.width) +
                           ", " + std::to_string(i / img.width) + "); a goniometric light cannot emit negative intensity");
         table[i] = v;
         peak = std::max(peak, double(v));
     }
     uint32_t index = AddProfileTable(ctx, table, img.width);
     *description = Quoted(filename) + ": " + std::to_string(img.width) + " x " + std::to_string(img.height) +
-                   " equal-area image (" + (img.channels >= 3 ? "RGB averaged" : "Y") + "), peak " + Number(peak);
+                   " equal-area image (" + (img.channels >= 3 ? "RGB averaged" : "Y") + "), peak " + FormatNumber(peak);
     ctx.profileTables[path] = {index, *description};
     return index;
 }
@@ -313,10 +307,10 @@ void BuildLights(BuildContext &ctx) {
             Float coneAngle = Float(p.GetOneFloat("coneangle", 30));
             Float coneDelta = Float(p.GetOneFloat("conedeltaangle", 5));
             if (!(coneAngle > 0 && coneAngle <= 180))
-                Fail(ParamLoc(p, "coneangle", e.loc), "spot light: \"coneangle\" must be in (0, 180] degrees (got " + Number(coneAngle) + ")");
+                Fail(ParamLoc(p, "coneangle", e.loc), "spot light: \"coneangle\" must be in (0, 180] degrees (got " + FormatNumber(coneAngle) + ")");
             if (!(coneDelta >= 0 && coneDelta <= coneAngle))
                 Fail(ParamLoc(p, "conedeltaangle", e.loc), "spot light: \"conedeltaangle\" must be in [0, coneangle] (got " +
-                                                               Number(coneDelta) + ")");
+                                                               FormatNumber(coneDelta) + ")");
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
             if (!(LengthSquared(to - from) > 0)) Fail(e.loc, "spot light: \"from\" and \"to\" must differ");

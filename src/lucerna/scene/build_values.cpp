@@ -10,12 +10,6 @@ namespace lu::build {
 
 namespace {
 
-std::string Number(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%g", x);
-    return buf;
-}
-
 // The values a float texture can take when the builder knows them: constants, and checkerboards,
 // scales and mixes (by a constant amount in [0, 1]) of textures it knows (children in `nodes`).
 bool KnownRange(const FloatTexture &t, const std::vector<FloatTexture> &nodes, Float *lo, Float *hi, int depth = 0) {
@@ -70,10 +64,10 @@ void CheckRange(const FloatTexture &t, const std::vector<FloatTexture> &nodes, F
     FileLoc at;
     std::string name = Present(p, names, loc, &at);
     if (t.kind == TextureKind::ImageMap && lo >= 0 && t.scale < 0)
-        Fail(at, owner + ": the image texture of " + Quoted(name) + " has a negative \"scale\" (" + Number(t.scale) + ")");
+        Fail(at, owner + ": the image texture of " + Quoted(name) + " has a negative \"scale\" (" + FormatNumber(t.scale) + ")");
     Float vLo, vHi;
     if (!KnownRange(t, nodes, &vLo, &vHi) || (vLo >= lo && vHi <= hi)) return;
-    Fail(at, owner + ": " + Quoted(name) + " " + rule + " (got " + Number(vLo < lo ? vLo : vHi) + ")");
+    Fail(at, owner + ": " + Quoted(name) + " " + rule + " (got " + FormatNumber(vLo < lo ? vLo : vHi) + ")");
 }
 
 // Spectrum textures: constant spectra were checked when read (no negative values); an image
@@ -82,7 +76,7 @@ void CheckScale(const SpectrumTexture &t, const ParameterDictionary &p, const ch
                 const std::string &owner) {
     if (t.kind == TextureKind::ImageMap && t.scale < 0)
         Fail(ParamLoc(p, name, loc), owner + ": the image texture of " + Quoted(name) + " has a negative \"scale\" (" +
-                                         Number(t.scale) + ")");
+                                         FormatNumber(t.scale) + ")");
 }
 
 }  // namespace
@@ -117,7 +111,7 @@ void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nod
     const char *etaName = coatedConductor ? "interface.eta" : "eta";
     if (hasEta && m.eta.kind == SpectrumKind::Constant && !(m.eta.scale > 0))
         Fail(ParamLoc(p, etaName, loc), owner + ": " + Quoted(etaName) + " (index of refraction) must be positive (got " +
-                                            Number(m.eta.scale) + ")");
+                                            FormatNumber(m.eta.scale) + ")");
     if (m.kind == MaterialKind::CoatedDiffuse || coatedConductor) {
         CheckRange(m.thickness, nodes, 0, Infinity, p, {"thickness"}, loc, owner, "must not be negative");
         // The Henyey-Greenstein phase function is negative for |g| > 1.
@@ -126,7 +120,7 @@ void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nod
         if (m.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", loc), owner + ": \"maxdepth\" must not be negative (got " + std::to_string(m.maxDepth) + ")");
     }
     if (m.kind == MaterialKind::DiffuseTransmission && !std::isfinite(m.scale))
-        Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must be finite (got " + Number(m.scale) + ")");
+        Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must be finite (got " + FormatNumber(m.scale) + ")");
 }
 
 }  // namespace lu::build

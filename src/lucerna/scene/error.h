@@ -5,10 +5,18 @@
 
 #include <memory>
 #include <stdexcept>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace lu {
+
+// A number as printf's %g writes it, for messages.
+inline std::string FormatNumber(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
 
 // A position in a scene file; line and col are 1-based (0: unknown).
 struct FileLoc {

@@ -16,12 +16,6 @@ namespace lu {
 
 namespace {
 
-std::string Num(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", x);
-    return buf;
-}
-
 std::string_view Trim(std::string_view s) {
     while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
     while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
@@ -75,20 +69,20 @@ class IESReader {
             // applied (they describe a lamp tilted away from its measured orientation).
             p.tilt = "INCLUDE";
             int geometry = Int("the lamp-to-luminaire geometry (TILT=INCLUDE)");
-            if (geometry < 1 || geometry > 3) FailAtLast("lamp-to-luminaire geometry must be 1, 2 or 3 (got " + Num(geometry) + ")");
+            if (geometry < 1 || geometry > 3) FailAtLast("lamp-to-luminaire geometry must be 1, 2 or 3 (got " + FormatNumber(geometry) + ")");
             int n = Int("the number of tilt angles");
-            if (n < 1) FailAtLast("the number of tilt angles must be at least 1 (got " + Num(n) + ")");
+            if (n < 1) FailAtLast("the number of tilt angles must be at least 1 (got " + FormatNumber(n) + ")");
             std::vector<double> angles;
             for (int i = 0; i < n; ++i) {
                 double a = Number("tilt angle " + std::to_string(i + 1) + " of " + std::to_string(n));
-                if (a < 0 || a > 90) FailAtLast("tilt angle " + Num(a) + " is outside [0, 90] degrees");
+                if (a < 0 || a > 90) FailAtLast("tilt angle " + FormatNumber(a) + " is outside [0, 90] degrees");
                 if (!angles.empty() && !(a > angles.back()))
-                    FailAtLast("tilt angles must increase: " + Num(a) + " follows " + Num(angles.back()));
+                    FailAtLast("tilt angles must increase: " + FormatNumber(a) + " follows " + FormatNumber(angles.back()));
                 angles.push_back(a);
             }
             for (int i = 0; i < n; ++i) {
                 double f = Number("tilt multiplying factor " + std::to_string(i + 1) + " of " + std::to_string(n));
-                if (f < 0) FailAtLast("negative tilt multiplying factor " + Num(f));
+                if (f < 0) FailAtLast("negative tilt multiplying factor " + FormatNumber(f));
             }
         } else {
             Fail(tiltLineNo, tilt.empty() ? std::string("\"TILT=\" without a value (NONE, INCLUDE or a file name)")
@@ -97,45 +91,45 @@ class IESReader {
                                                 "TILT=INCLUDE)");
         }
         p.lamps = Int("the number of lamps");
-        if (p.lamps < 1) FailAtLast("the number of lamps must be at least 1 (got " + Num(p.lamps) + ")");
+        if (p.lamps < 1) FailAtLast("the number of lamps must be at least 1 (got " + FormatNumber(p.lamps) + ")");
         p.lumensPerLamp = Number("the lumens per lamp");
         if (!(p.lumensPerLamp > 0 || p.lumensPerLamp == -1))
-            FailAtLast("lumens per lamp must be positive, or -1 for absolute photometry (got " + Num(p.lumensPerLamp) + ")");
+            FailAtLast("lumens per lamp must be positive, or -1 for absolute photometry (got " + FormatNumber(p.lumensPerLamp) + ")");
         p.candelaMultiplier = Number("the candela multiplier");
-        if (!(p.candelaMultiplier > 0)) FailAtLast("the candela multiplier must be positive (got " + Num(p.candelaMultiplier) + ")");
+        if (!(p.candelaMultiplier > 0)) FailAtLast("the candela multiplier must be positive (got " + FormatNumber(p.candelaMultiplier) + ")");
         int nv = Int("the number of vertical angles");
-        if (nv < 2) FailAtLast("at least 2 vertical angles are needed (got " + Num(nv) + ")");
+        if (nv < 2) FailAtLast("at least 2 vertical angles are needed (got " + FormatNumber(nv) + ")");
         int nh = Int("the number of horizontal angles");
-        if (nh < 1) FailAtLast("at least 1 horizontal angle is needed (got " + Num(nh) + ")");
-        if (double(nv) * double(nh) > 1e7) FailAtLast("the web has " + Num(double(nv) * nh) + " candela values (more than 10^7)");
+        if (nh < 1) FailAtLast("at least 1 horizontal angle is needed (got " + FormatNumber(nh) + ")");
+        if (double(nv) * double(nh) > 1e7) FailAtLast("the web has " + FormatNumber(double(nv) * nh) + " candela values (more than 10^7)");
         p.photometricType = Int("the photometric type");
         if (p.photometricType == 2 || p.photometricType == 3)
             FailAtLast(std::string("photometric type ") + (p.photometricType == 2 ? "B (2)" : "A (3)") +
                        " is not supported (only type C, 1)");
-        if (p.photometricType != 1) FailAtLast("the photometric type must be 1 (C), 2 (B) or 3 (A) (got " + Num(p.photometricType) + ")");
+        if (p.photometricType != 1) FailAtLast("the photometric type must be 1 (C), 2 (B) or 3 (A) (got " + FormatNumber(p.photometricType) + ")");
         int units = Int("the units type");
-        if (units != 1 && units != 2) FailAtLast("the units type must be 1 (feet) or 2 (meters) (got " + Num(units) + ")");
+        if (units != 1 && units != 2) FailAtLast("the units type must be 1 (feet) or 2 (meters) (got " + FormatNumber(units) + ")");
         Number("the luminous opening's width");
         Number("the luminous opening's length");
         Number("the luminous opening's height");
         p.ballastFactor = Number("the ballast factor");
-        if (!(p.ballastFactor > 0)) FailAtLast("the ballast factor must be positive (got " + Num(p.ballastFactor) + ")");
+        if (!(p.ballastFactor > 0)) FailAtLast("the ballast factor must be positive (got " + FormatNumber(p.ballastFactor) + ")");
         p.ballastLampFactor = Number(p.format == "LM-63-2002" ? "the \"future use\" field after the ballast factor"
                                                               : "the ballast-lamp photometric factor");
         if (!(p.ballastLampFactor > 0))
-            FailAtLast("the ballast-lamp photometric factor must be positive (got " + Num(p.ballastLampFactor) + ")");
+            FailAtLast("the ballast-lamp photometric factor must be positive (got " + FormatNumber(p.ballastLampFactor) + ")");
         p.inputWatts = Number("the input watts");
-        if (p.inputWatts < 0) FailAtLast("the input watts must not be negative (got " + Num(p.inputWatts) + ")");
+        if (p.inputWatts < 0) FailAtLast("the input watts must not be negative (got " + FormatNumber(p.inputWatts) + ")");
 
         ReadAngles(p.vertical, nv, "vertical");
         for (size_t i = 0; i < p.vertical.size(); ++i)
             if (p.vertical[i] < 0 || p.vertical[i] > 180)
-                FailAt(angleLine_[i], "vertical angle " + Num(p.vertical[i]) + " is outside [0, 180] degrees (type C)");
+                FailAt(angleLine_[i], "vertical angle " + FormatNumber(p.vertical[i]) + " is outside [0, 180] degrees (type C)");
         ReadAngles(p.horizontal, nh, "horizontal");
         double h0 = p.horizontal.front(), h1 = p.horizontal.back();
         int hLine = angleLine_.back();
         if (nh == 1) {
-            if (h0 != 0) FailAt(hLine, "a single horizontal angle must be 0 (got " + Num(h0) + ")");
+            if (h0 != 0) FailAt(hLine, "a single horizontal angle must be 0 (got " + FormatNumber(h0) + ")");
             p.symmetry = IESSymmetry::Rotational;
         } else if (h0 == 0 && h1 == 90) p.symmetry = IESSymmetry::Quadrant;
         else if (h0 == 0 && h1 == 180) p.symmetry = IESSymmetry::Half0To180;
@@ -143,7 +137,7 @@ class IESReader {
         else if (h0 == 0 && h1 == 360) p.symmetry = IESSymmetry::Full;
         else
             FailAt(hLine, "horizontal angles must run 0-90, 0-180, 90-270 or 0-360 degrees, or be the single angle 0 "
-                          "(type C symmetry); got " + Num(h0) + "-" + Num(h1));
+                          "(type C symmetry); got " + FormatNumber(h0) + "-" + FormatNumber(h1));
 
         size_t count = size_t(nv) * size_t(nh);
         p.candela.resize(count);
@@ -154,8 +148,8 @@ class IESReader {
                            " candela values (" + std::to_string(nv) + " vertical x " + std::to_string(nh) + " horizontal angles)");
             double c = Number("a candela value");
             if (c < 0)
-                FailAtLast("negative candela value " + Num(c) + " (vertical " + Num(p.vertical[size_t(v)]) + ", horizontal " +
-                           Num(p.horizontal[size_t(h)]) + ")");
+                FailAtLast("negative candela value " + FormatNumber(c) + " (vertical " + FormatNumber(p.vertical[size_t(v)]) + ", horizontal " +
+                           FormatNumber(p.horizontal[size_t(h)]) + ")");
             p.candela[i] = c;
         }
         if (pos_ < tokens_.size())
@@ -167,7 +161,7 @@ class IESReader {
                 double a = p.candela[size_t(v)], b = p.candela[size_t(nh - 1) * size_t(nv) + size_t(v)];
                 if (std::abs(a - b) > 1e-6 * std::max(std::abs(a), std::abs(b)) + 1e-9)
                     FailAt(tokens_.back().line, "the candela values at horizontal 0 and 360 (the same plane) differ at vertical " +
-                                                Num(p.vertical[size_t(v)]) + ": " + Num(a) + " vs " + Num(b));
+                                                FormatNumber(p.vertical[size_t(v)]) + ": " + FormatNumber(a) + " vs " + FormatNumber(b));
             }
         return p;
     }
@@ -239,7 +233,7 @@ class IESReader {
                 FailAtLast("the file ends after " + std::to_string(i) + " of the " + std::to_string(n) + " " + kind + " angles");
             double a = Number(std::string("a ") + kind + " angle");
             if (!out.empty() && !(a > out.back()))
-                FailAtLast(std::string(kind) + " angles must increase: " + Num(a) + " follows " + Num(out.back()) +
+                FailAtLast(std::string(kind) + " angles must increase: " + FormatNumber(a) + " follows " + FormatNumber(out.back()) +
                            " (angle " + std::to_string(i + 1) + " of " + std::to_string(n) + ")");
             out.push_back(a);
             angleLine_.push_back(tokens_[pos_ - 1].line);
@@ -320,8 +314,8 @@ std::string IESProfile::Describe() const {
     }
     std::ostringstream o;
     o << format << ", type C, TILT=" << tilt << ", " << vertical.size() << " vertical x " << horizontal.size()
-      << " horizontal angles (" << sym << "), vertical " << Num(vertical.front()) << "-" << Num(vertical.back())
-      << ", peak " << Num(MaxCandela()) << " cd";
+      << " horizontal angles (" << sym << "), vertical " << FormatNumber(vertical.front()) << "-" << FormatNumber(vertical.back())
+      << ", peak " << FormatNumber(MaxCandela()) << " cd";
     return o.str();
 }
 
