@@ -57,8 +57,11 @@ LU_INLINE Float MneeWeight(Float pdfA, Float pdfOtherA) { return PowerHeuristic(
 // vertex it left (l: light sampling, whose transmittance is estimated by ratio tracking). Chromatic
 // media make them differ between wavelengths, null collisions between u and l. Paths that never
 // entered a medium keep them 1 and are weighted by the scalar functions above.
+// lChain is l for the whole refractive chain since the last non-specular vertex x0 (surface or
+// medium): manifold NEE from x0 estimates the transmittance of every segment of the chain, not
+// only of the last one (reset to u at non-specular vertices only).
 struct WavelengthPdfs {
-    SampledSpectrum u = SampledSpectrum(1), l = SampledSpectrum(1);
+    SampledSpectrum u = SampledSpectrum(1), l = SampledSpectrum(1), lChain = SampledSpectrum(1);
 };
 
 // The wavelength part of the weight of technique t for a path it sampled at the hero wavelength,

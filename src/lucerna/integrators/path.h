@@ -24,6 +24,12 @@ LU_INLINE void SamplePhaseDirection(const Vec3f &p, const Vec3f &wo, Float g, Sa
     v.ctx.p = p;
     v.pdfBsdfW = pdf;
     v.camera = v.specular = v.regularized = v.allSpecular = false;
+    // NEE (and MNEE) ran here: a refractive chain may start (as at a non-specular surface).
+    v.chainVertices = 0;
+    v.chainHash = 0;
+    v.chainStart = v.ctx;
+    v.chainBsdfPdfW = pdf;
+    v.chainLobePdf = 1;
     ray.o = p;
     ray.d = wi;
     ray.tMax = Infinity;
@@ -72,13 +78,14 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 vm.r = &r;
                 if (ps.strategy != LightStrategy::BSDFOnly) {
                     SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st,
-                                                        ps.strategy, 0, BeamOneMinusCos(ps.reg));
+                                                        ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0,
+                                                        BeamOneMinusCos(ps.reg));
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
                 SamplePhaseDirection(pScatter, wo, g, sampler, prev, ray);
                 crossedBeam = NoIndex;
-                r.l = r.u;
+                r.l = r.lChain = r.u;
                 if (!beta.IsFinite()) {
                     NoteBadValue(st, beta, RejectCause::Medium, medium, depth);
                     st.invalid = true;
@@ -153,6 +160,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         if (scene.walkInterfaces) {
             medium = MediumAfter(shape, si.n, ray.d, medium);
             r.l = r.u;
+            if (!specular) r.lChain = r.u;   // a chain for MNEE starts here (it continues through Dirac vertices)
         }
         // Russian roulette (pbrt-v4): after the first bounce, when the throughput is small.
         SampledSpectrum rrBeta = beta * etaScale;

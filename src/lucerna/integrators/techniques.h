@@ -27,10 +27,9 @@ struct PathSettings {
 };
 
 // MNEE applies in this scene: the setting is on and some material can refract or pass light.
-// Not in scenes with media: MNEE's chains carry no transmittance of the media they cross (yet).
-LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) {
-    return ps.mnee && scene.transmitters > 0 && scene.media.size == 0;
-}
+// In scenes with media too: the chains carry the transmittance of the media they cross
+// (MneeChainTransmittance), and medium vertices start chains as surface vertices do.
+LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) { return ps.mnee && scene.transmitters > 0; }
 
 // Shadow ray from p (offset along n towards the light) to the point pLight (or to infinity along wi).
 LU_INLINE Ray SpawnShadowRay(const Vec3f &p, const Vec3f &n, const Vec3f &wi, Float distance, const Vec3f &pLight) {
@@ -108,19 +107,71 @@ LU_INLINE bool LightSamplePdfs(const VertexMedia &vm, const ShadowTransmittance 
 
 // ---- Manifold next-event estimation (integrators/mnee.h) ----
 
-// The light sample ls of NEE at the non-specular vertex si, whose straight shadow ray is blocked:
+// The transmittance of the media along a solved chain x0 -> x1 ... xk -> y, estimated per
+// segment as a shadow ray's (SegmentTransmittance: ratio tracking, exact in homogeneous media),
+// starting in `medium`: the pass-through surfaces on a segment and the chain's refractions change
+// the medium as their interfaces say (pbrt-v4's MediumInterface). False when the estimate is 0
+// or a segment crosses more surfaces than the chain's walk allows.
+template <typename Tracer>
+LU_HD bool MneeChainTransmittance(const SceneView &scene, const Tracer &tracer, const MneeChain &ch, uint32_t medium,
+                                  const SampledWavelengths &lambda, PathStats &st, ShadowTransmittance *tr) {
+    RNG rng(Hash(ch.x0.x, ch.x0.y, ch.x0.z), Hash(ch.y.x, ch.y.y, ch.y.z));
+    Vec3f from = ch.x0, nFrom = ch.n0;
+    for (int i = 0; i <= ch.k; ++i) {
+        Vec3f to = i == ch.k ? ch.y : ch.v[i].p;
+        Ray ray;
+        ray.o = OffsetRayOrigin(from, nFrom, to - from);
+        ray.d = to - ray.o;
+        ray.tMax = 1 - 1e-4f;   // up to the vertex (or the light point), not its surface
+        bool reached = false;
+        for (int crossing = 0; crossing <= MaxMneeSurfaces && !reached; ++crossing) {
+            HitRecord hit;
+            ++st.rays;
+            bool found = tracer.Intersect(ray, &hit);
+            if (medium != NoIndex) {
+                tr->throughMedium = true;
+                Float len = Length(ray.d);
+                Ray ru;
+                ru.o = ray.o;
+                ru.d = ray.d / len;
+                SegmentTransmittance(scene, scene.media[medium], ru, (found ? hit.t : ray.tMax) * len, lambda, rng, tr);
+                if (tr->T.IsBlack()) return false;
+            }
+            if (!found) {
+                reached = true;
+                break;
+            }
+            SurfaceInteraction si = ComputeInteraction(scene, hit, ray);   // a pass-through surface
+            medium = MediumAfter(scene.shapes[hit.shape], si.n, ray.d, medium);
+            ray.o = OffsetRayOrigin(si.p, si.n, to - si.p);
+            ray.d = to - ray.o;
+            ray.tMax = 1 - 1e-4f;
+        }
+        if (!reached) return false;
+        if (i < ch.k) {   // refracted at vertex i into the medium on its other side
+            const MneeVertex &v = ch.v[i];
+            medium = MediumAfter(scene.shapes[v.shape], v.ng, MneeNext(ch, i) - v.p, medium);
+            from = v.p;
+            nFrom = v.ng;
+        }
+    }
+    return true;
+}
+
+// The light sample ls of NEE at the non-specular vertex ctx (a surface, or a medium point: ctx.n
+// zero), whose straight shadow ray is blocked: the refractive chain to the same light point,
+// when the blockers are smooth dielectrics and Newton's method finds it, through the media of vm
 // (budget: the vertices maxdepth leaves for the chain, so that MNEE adds the paths BSDF sampling
-// would find, no longer ones)
-// the refractive chain to the same light point, when the blockers are smooth dielectrics and
-// Newton's method finds it. Weighted against BSDF sampling of the same chain (area lights; the
-// power heuristic in area measure at the light point); the only technique for point and spot
-// lights. The regularized connection leaves these paths to MNEE (see SampleRegularized).
-// ctx, wo, sc: the vertex as SampleLd has it (a surface: MNEE does not start in media).
+// would find, no longer ones). Weighted against BSDF (phase) sampling of the same chain (area
+// lights; the power heuristic in area measure at the light point, and over the wavelengths once
+// the path is in media, with the chain's own per-wavelength probabilities: WavelengthPdfs::lChain
+// on the other side); the only technique for point and spot lights. The regularized connection
+// leaves these paths to MNEE (see SampleRegularized).
 template <typename Tracer, typename Scatter>
-LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const LightPick &pick,
-                                 const Light &light, const LightLiSample &ls, const SampledWavelengths &lambda,
-                                 const SceneView &scene, const Tracer &tracer, LightStrategy strategy, int budget,
-                                 PathStats &st) {
+LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
+                                 const LightPick &pick, const Light &light, const LightLiSample &ls,
+                                 const SampledWavelengths &lambda, const SceneView &scene, const Tracer &tracer,
+                                 LightStrategy strategy, int budget, PathStats &st) {
     if (ls.distance == Infinity) return SampledSpectrum(0);   // distant and infinite lights: no light point
     bool delta = ls.isDelta;
     if (!delta && light.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
@@ -132,17 +183,32 @@ LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const 
     Vec3f wy = Normalize((ch.k ? ch.v[ch.k - 1].p : ctx.p) - ch.y);   // from the light towards the chain
     SampledSpectrum f = sc.f(wo, w0);
     if (f.IsBlack()) return SampledSpectrum(0);
+    ShadowTransmittance tr;
+    if (scene.walkInterfaces && !MneeChainTransmittance(scene, tracer, ch, vm.Toward(w0), lambda, st, &tr))
+        return SampledSpectrum(0);
+    SampledSpectrum rL, rU;
+    bool spectral = LightSamplePdfs(vm, tr, &rL, &rU);
+    f *= tr.T;
+    bool surface = LengthSquared(ctx.n) > 0;
     SampledSpectrum c;
-    if (delta) {   // E = I |d omega_y / dA_x0| per unit area of the surface at x0
-        Float cosG = AbsDot(w0, ctx.n), G = MneeGeometry(ch, false);
+    if (delta) {   // E = I |d omega_y / dA_x0| per unit area of the surface at x0 (in a medium: of
+                   // the plane normal to the arriving light, w0)
+        if (!surface) ch.n0 = w0;
+        Float cosG = surface ? AbsDot(w0, ctx.n) : 1, G = MneeGeometry(ch, false);
         if (!(cosG > 0) || !(G > 0)) return SampledSpectrum(0);
-        c = f * tp.weight * PointLightIntensity(light, scene, wy, lambda) * (G / (cosG * pick.pmf));
+        Float w = spectral ? WavelengthWeight(rL, 1, rU, 0, lambda) : 1;
+        c = f * tp.weight * PointLightIntensity(light, scene, wy, lambda) * (G * w / (cosG * pick.pmf));
     } else {
         Float G = MneeGeometry(ch, true);
         Float pdfLightA = pick.pmf * ls.pdf * AbsDot(ls.nLight, ls.wi) / Sqr(ls.distance);
         if (!(pdfLightA > 0) || !(G > 0)) return SampledSpectrum(0);
+        Float pdfBsdfA = strategy == LightStrategy::MIS ? sc.PDF(wo, w0) * tp.lobePdf * G : 0;
         Float w = 1;
-        if (strategy == LightStrategy::MIS) w = MneeWeight(pdfLightA, sc.PDF(wo, w0) * tp.lobePdf * G);
+        if (spectral)
+            w = (pdfBsdfA > 0 ? MneeWeight(pdfLightA, rU[0] * pdfBsdfA) : 1) *
+                WavelengthWeight(rL, pdfLightA, rU, pdfBsdfA, lambda);
+        else if (strategy == LightStrategy::MIS)
+            w = MneeWeight(pdfLightA, pdfBsdfA);
         c = f * tp.weight * AreaLightL(light, scene, ch.y, ch.nY, Vec2f(0, 0), wy, lambda) * (G * w / pdfLightA);
     }
     if (!c.IsBlack()) ++st.mneeConnections;
@@ -172,7 +238,7 @@ LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Sc
     Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
     ShadowTransmittance tr;
     if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr))
-        return mneeBudget > 0 ? SampleMnee(ctx, wo, sc, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
+        return mneeBudget > 0 ? SampleMnee(ctx, wo, sc, vm, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
                               : SampledSpectrum(0);
     Float pdfLightW = pick.pmf * ls.pdf;
     SampledSpectrum rL, rU;
@@ -382,11 +448,47 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
 
 // ---- BSDF sampling, and the emitters it hits ----
 
+// Whether area light li, hit at pLight after a refractive chain from a non-specular vertex, is a
+// path MNEE from that vertex reproduces (it re-runs MNEE's deterministic solve). Then *pdfChainA
+// is BSDF (phase) sampling's pdf of the chain and *pdfMneeA MNEE's, both in area measure at
+// pLight. With the NEE-only strategy the answer is yes without a solve (the hit's weight is 0).
+template <typename Tracer>
+LU_HD bool MneeReproducesHit(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f pLight, Vec3f nLight,
+                             bool atInfinity, const PathSettings &ps, const SampledWavelengths &lambda,
+                             const Tracer &tracer, Float *pdfChainA, Float *pdfMneeA) {
+    if (!v.specular || v.chainVertices < 0 || atInfinity || !UsesMnee(ps, scene) ||
+        ps.strategy == LightStrategy::BSDFOnly || scene.lights[li].kind != LightKind::DiffuseArea)
+        return false;
+    if (ps.strategy == LightStrategy::NEEOnly) return true;
+    MneeChain ch;
+    MneeThroughput tp;
+    Float tol = 1e-3f * Distance(v.chainStart.p, v.chainVertices > 0 ? v.chainFirst : pLight) + 1e-6f;
+    if (!FindMneeChain(scene, tracer, v.chainStart.p, v.chainStart.n, pLight, nLight, lambda, &ch, &tp) ||
+        !MneeChainMatches(ch, v.chainVertices, v.chainHash, v.chainFirst, tol))
+        return false;
+    Vec3f ws = pLight - v.chainStart.p;
+    Float d = Length(ws);
+    ws = ws / d;
+    *pdfMneeA = LightPdfW(scene, li, v.chainStart, ws, pLight, nLight, AllowIncompletePDF(ps.strategy)) *
+                AbsDot(nLight, ws) / Sqr(d);
+    *pdfChainA = v.chainBsdfPdfW * v.chainLobePdf * MneeGeometry(ch, true);
+    return true;
+}
+
+
 // EmitterHitWeight for a path that went through media: the technique weights at the hero
 // wavelength from the per-wavelength probabilities (r.u[0] == 1), times the wavelength weight.
-LU_INLINE Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi,
-                                        Vec3f pLight, Vec3f nLight, bool atInfinity, const PathSettings &ps,
-                                        const WavelengthPdfs &r, const SampledWavelengths &lambda) {
+// After a refractive chain that MNEE from its start reproduces, MNEE is the partner technique, with
+// the chain's per-wavelength probabilities r.lChain (SampleMnee's weight on the other side).
+template <typename Tracer>
+LU_HD Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi,
+                                    Vec3f pLight, Vec3f nLight, bool atInfinity, const PathSettings &ps,
+                                    const WavelengthPdfs &r, const SampledWavelengths &lambda, const Tracer &tracer) {
+    Float pdfMneeA, pdfChainA;
+    if (MneeReproducesHit(v, scene, li, pLight, nLight, atInfinity, ps, lambda, tracer, &pdfChainA, &pdfMneeA)) {
+        if (ps.strategy == LightStrategy::NEEOnly) return 0;
+        return MneeWeight(pdfChainA, r.lChain[0] * pdfMneeA) * WavelengthWeight(r.u, pdfChainA, r.lChain, pdfMneeA, lambda);
+    }
     if (v.camera || (v.specular && !v.regularized)) return WavelengthWeight(r.u, 1, r.l, 0, lambda);
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {
@@ -411,24 +513,11 @@ template <typename Tracer>
 LU_HD Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f pLight,
                              Vec3f nLight, bool atInfinity, const PathSettings &ps, const WavelengthPdfs *r,
                              const SampledWavelengths &lambda, const Tracer &tracer) {
-    if (r) return EmitterHitWeightInMedia(v, scene, li, wi, pLight, nLight, atInfinity, ps, *r, lambda);
+    if (r) return EmitterHitWeightInMedia(v, scene, li, wi, pLight, nLight, atInfinity, ps, *r, lambda, tracer);
     if (v.camera) return 1;
-    if (v.specular && v.chainVertices >= 0 && !atInfinity && UsesMnee(ps, scene) && ps.strategy != LightStrategy::BSDFOnly &&
-        scene.lights[li].kind == LightKind::DiffuseArea) {
-        if (ps.strategy == LightStrategy::NEEOnly) return 0;
-        MneeChain ch;
-        MneeThroughput tp;
-        Float tol = 1e-3f * Distance(v.chainStart.p, v.chainVertices > 0 ? v.chainFirst : pLight) + 1e-6f;
-        if (FindMneeChain(scene, tracer, v.chainStart.p, v.chainStart.n, pLight, nLight, lambda, &ch, &tp) &&
-            MneeChainMatches(ch, v.chainVertices, v.chainHash, v.chainFirst, tol)) {
-            Vec3f ws = pLight - v.chainStart.p;
-            Float d = Length(ws);
-            ws = ws / d;
-            Float pdfLightA = LightPdfW(scene, li, v.chainStart, ws, pLight, nLight, AllowIncompletePDF(ps.strategy)) *
-                              AbsDot(nLight, ws) / Sqr(d);
-            return MneeWeight(v.chainBsdfPdfW * v.chainLobePdf * MneeGeometry(ch, true), pdfLightA);
-        }
-    }
+    Float pdfMneeA, pdfChainA;
+    if (MneeReproducesHit(v, scene, li, pLight, nLight, atInfinity, ps, lambda, tracer, &pdfChainA, &pdfMneeA))
+        return ps.strategy == LightStrategy::NEEOnly ? 0 : MneeWeight(pdfChainA, pdfMneeA);
     if (v.specular && !v.regularized) return 1;
     Float pdfLightW = LightPdfW(scene, li, v.ctx, wi, pLight, nLight, AllowIncompletePDF(ps.strategy));
     if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW

@@ -22,7 +22,7 @@ enum class MediumEvent : uint8_t { Passed, Scattered, Terminated };
 // tentative collision to L (weighted over the wavelengths), and returns Scattered with the real
 // scattering point in *pScatter, Terminated (absorbed, or the depth limit at a real collision), or
 // Passed (no real collision: beta and r then carry the transmittance to tMax). beta and r.u are
-// updated for the collisions sampled; r.l with the probabilities of the light technique's
+// updated for the collisions sampled; r.l (and r.lChain) with the probabilities of the light technique's
 // transmittance estimate (TraceTransmittance): ratio tracking, or 1 for a homogeneous medium,
 // whose transmittance it computes exactly. Consumes three sampler dimensions.
 LU_HD inline MediumEvent SampleMediumSegment(const SceneView &scene, uint32_t medium, const Ray &ray, Float tMax,
@@ -74,14 +74,20 @@ LU_HD inline MediumEvent SampleMediumSegment(const SceneView &scene, uint32_t me
             beta *= Tm * sigmaN / pdf;
             r.u *= Tm * sigmaN / pdf;
             r.l *= Tm * sigmaMaj / pdf;
+            r.lChain *= Tm * sigmaMaj / pdf;
             return !beta.IsBlack() && !r.u.IsBlack();
         });
     if (event != MediumEvent::Passed) return event;
     if (!(Tmaj[0] > 0) || beta.IsBlack() || r.u.IsBlack()) return MediumEvent::Terminated;
     beta *= Tmaj / Tmaj[0];
     r.u *= Tmaj / Tmaj[0];
-    if (m.kind == MediumKind::Homogeneous) r.l /= Tmaj[0];
-    else r.l *= Tmaj / Tmaj[0];
+    if (m.kind == MediumKind::Homogeneous) {
+        r.l /= Tmaj[0];
+        r.lChain /= Tmaj[0];
+    } else {
+        r.l *= Tmaj / Tmaj[0];
+        r.lChain *= Tmaj / Tmaj[0];
+    }
     return MediumEvent::Passed;
 }
 
