@@ -16,7 +16,7 @@ namespace {
 
 TEST(MaterialScenes, FeatureScenesBuildCleanAndRenderFinite) {
     std::vector<std::string> files = FeatureSceneFiles({"materials-"});
-    ASSERT_EQ(files.size(), 1u);
+    ASSERT_EQ(files.size(), 2u);   // layered-mix, bump
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
@@ -133,6 +133,49 @@ TEST(MaterialScenes, FlatNormalMapIsBitIdentical) {
         }
         EXPECT_GT(maxDiff, 0.01);   // the control: a tilted map changes the shading
     }
+}
+
+// A "texture" eta (pbrt-v4 accepts a float texture on the dielectric interfaces) evaluated per
+// hit: a constant texture renders byte-identically to the plain float; a checkerboard of indices
+// does not.
+std::string EtaScene(const std::string &defs, const std::string &eta, const std::string &ieta) {
+    return "LookAt 0 1 -4  0 0.4 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\n"
+           "Film \"rgb\" \"integer xresolution\" [ 24 ] \"integer yresolution\" [ 16 ]\n"
+           "WorldBegin\nLightSource \"infinite\" \"rgb L\" [ 0.6 0.6 0.6 ]\n"
+           "LightSource \"distant\" \"point3 from\" [ -2 5 -4 ] \"point3 to\" [ 0 0 0 ] \"rgb L\" [ 2 2 2 ]\n" + defs +
+           "AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.6 0.5 0.4 ]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [ -4 0 -4  4 0 -4  -4 0 4  4 0 4 ]\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"dielectric\" " + eta + " \"float roughness\" 0.1\nTranslate -1.5 0.5 0\n"
+           "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"thindielectric\" " + eta + "\nTranslate -0.5 0.5 0\n"
+           "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"coateddiffuse\" " + eta + "\nTranslate 0.5 0.5 0\n"
+           "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"coatedconductor\" " + ieta + "\nTranslate 1.5 0.5 0\n"
+           "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n";
+}
+
+TEST(MaterialScenes, ConstantTextureEtaIsTheFloatEta) {
+    auto plain = LoadSceneText("eta_float", EtaScene("", "\"float eta\" 1.33", "\"float interface.eta\" 1.33"));
+    std::string defs = "Texture \"e\" \"float\" \"constant\" \"float value\" 1.33\n";
+    auto tex = LoadSceneText("eta_tex", EtaScene(defs, "\"texture eta\" \"e\"", "\"texture interface.eta\" \"e\""));
+    std::string checks = "Texture \"e\" \"float\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 8 "
+                         "\"float tex1\" 1.33 \"float tex2\" 1.8\n";
+    auto varying = LoadSceneText("eta_checks", EtaScene(checks, "\"texture eta\" \"e\"", "\"texture interface.eta\" \"e\""));
+    ASSERT_TRUE(plain && tex && varying);
+    for (const Material &m : tex->materials)
+        if (m.kind != MaterialKind::Diffuse) {
+            EXPECT_NE(m.etaTexture, NoIndex);
+        }
+    RenderResultForTest r0 = RenderScene(*plain, 8, 6, 5), r1 = RenderScene(*tex, 8, 6, 5), r2 = RenderScene(*varying, 8, 6, 5);
+    ASSERT_EQ(r0.image.pixels.size(), r1.image.pixels.size());
+    double maxDiff = 0;
+    for (size_t i = 0; i < r0.image.pixels.size(); ++i) {
+        ASSERT_EQ(r0.image.pixels[i], r1.image.pixels[i]) << i;
+        ASSERT_TRUE(std::isfinite(r2.image.pixels[i]));
+        maxDiff = std::max(maxDiff, double(std::abs(r2.image.pixels[i] - r0.image.pixels[i])));
+    }
+    EXPECT_GT(maxDiff, 0.01);   // the control: a varying index changes the image
 }
 
 }  // namespace

@@ -126,7 +126,40 @@ TEST(MaterialBuild, Errors) {
     ExpectError("Material \"coatedconductor\" \"float g\" 1.5", 4, "\"g\" must be in [-1, 1]");
     ExpectError("Material \"coatedconductor\" \"integer nsamples\" 0", 4, "\"nsamples\" must be at least 1");
     ExpectError("Material \"diffuse\" \"string normalmap\" \"missing.exr\"", 4, "missing.exr");
-    ExpectError("Material \"diffuse\" \"float displacement\" 0.1", 4, "displacement");
+    ExpectError("Material \"diffuse\" \"texture displacement\" \"nope\"", 4, "couldn't find float texture named \"nope\"");
+    ExpectError("Material \"dielectric\" \"texture eta\" \"nope\"", 4, "couldn't find float texture named \"nope\"");
+}
+
+TEST(MaterialBuild, DisplacementAndTexturedEta) {
+    const char *defs = "Texture \"b\" \"float\" \"fbm\"\nTexture \"e\" \"float\" \"constant\" \"float value\" 1.33\n";
+    for (std::string mat : {"Material \"diffuse\" \"texture displacement\" \"b\"",
+                            "Material \"dielectric\" \"texture displacement\" \"b\" \"texture eta\" \"e\"",
+                            "Material \"thindielectric\" \"texture displacement\" \"b\" \"texture eta\" \"e\"",
+                            "Material \"coateddiffuse\" \"texture displacement\" \"b\" \"texture eta\" \"e\"",
+                            "Material \"coatedconductor\" \"texture displacement\" \"b\" \"texture interface.eta\" \"e\""}) {
+        SCOPED_TRACE(mat);
+        Diagnostics diag;
+        auto s = BuildWorld(defs + mat, diag);
+        EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+        EXPECT_TRUE(diag.unsupported.empty());
+        const Material &m = ShapeMaterial(*s);
+        ASSERT_NE(m.displacement, NoIndex);
+        EXPECT_EQ(s->floatTextures[m.displacement].kind, TextureKind::FBm);
+        if (mat.find("eta") != std::string::npos) {
+            ASSERT_NE(m.etaTexture, NoIndex);
+            EXPECT_EQ(s->floatTextures[m.etaTexture].value, 1.33f);
+        } else {
+            EXPECT_EQ(m.etaTexture, NoIndex);
+        }
+    }
+    // A float displacement is a constant node; a plain float eta stays a spectrum.
+    Diagnostics diag;
+    auto s = BuildWorld("Material \"dielectric\" \"float displacement\" 0.1 \"float eta\" 1.4", diag);
+    const Material &m = ShapeMaterial(*s);
+    ASSERT_NE(m.displacement, NoIndex);
+    EXPECT_EQ(s->floatTextures[m.displacement].value, 0.1f);
+    EXPECT_EQ(m.etaTexture, NoIndex);
+    EXPECT_TRUE(m.eta.IsConstant());
 }
 
 TEST(MaterialBuild, NormalMapNeedsRGB) {

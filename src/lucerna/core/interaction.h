@@ -26,6 +26,14 @@ struct SurfaceInteraction {
     uint32_t areaLight = 0xffffffffu; // light index of the emitting primitive, or NoIndex
 };
 
+// pbrt-v4's shading-geometry partial derivatives at a hit (its SurfaceInteraction::shading
+// dpdu, dpdv, dndu, dndv), render space. Bump mapping needs them; they are computed on demand
+// (ComputeShadingDerivatives, geometry/shapes.h), not for every hit.
+struct ShadingDerivatives {
+    Vec3f dpdu, dpdv;   // shading tangents (for meshes with normals: pbrt-v4's ss, ts)
+    Vec3f dndu, dndv;   // derivatives of the unit shading normal along u and v
+};
+
 // Where texture lookups happen.
 struct TextureEvalContext {
     Vec3f p;

@@ -135,6 +135,13 @@ struct Material {
     // "normalmap" (any material but mix): scene.images index of a linear RGB image, tangent-space
     // normals in [0,1]^3, repeat wrap (pbrt-v4's NormalMap); NoIndex: none.
     uint32_t normalMap = NoIndex;
+    // "displacement" (any material but mix and interface): floatTextures index of the bump map's
+    // displacement along the shading normal (pbrt-v4's BumpMap; a normal map takes precedence);
+    // NoIndex: none.
+    uint32_t displacement = NoIndex;
+    // A "texture" eta (dielectric, thindielectric, coated* interface): floatTextures index,
+    // evaluated per hit and the same at every wavelength (it overrides `eta`); NoIndex: `eta`.
+    uint32_t etaTexture = NoIndex;
 };
 
 // ---- Shapes ----

@@ -190,6 +190,131 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
     return si;
 }
 
+// Derivative of the unit shading normal along the tangent direction d (in the geometric plane):
+// a sphere's n/R (sign by orientation), a mesh's interpolated vertex normal (its normalization
+// included), zero otherwise. MNEE's chain derivatives and bump mapping's dndu/dndv use it.
+LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord &hit, const SurfaceInteraction &si,
+                                        const Vec3f &d) {
+    const Shape &shape = scene.shapes[hit.shape];
+    if (shape.kind == ShapeKind::Sphere) {
+        const Sphere &sp = scene.spheres[shape.index];
+        Float R = sp.radius * Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
+        Vec3f dn = d / R;
+        return sp.flipNormals ? -dn : dn;
+    }
+    if (shape.kind != ShapeKind::Triangles) return Vec3f(0, 0, 0);
+    const TriangleMesh &m = scene.triangleMeshes[shape.index];
+    if (m.normalOffset == NoIndex) return Vec3f(0, 0, 0);
+    uint32_t v[3];
+    TriangleVertices(scene, m, hit.primitive, v);
+    Vec3f e1 = scene.positions[v[1]] - scene.positions[v[0]], e2 = scene.positions[v[2]] - scene.positions[v[0]];
+    Vec3f n0 = scene.normals[m.normalOffset + (v[0] - m.firstVertex)];
+    Vec3f n1 = scene.normals[m.normalOffset + (v[1] - m.firstVertex)];
+    Vec3f n2 = scene.normals[m.normalOffset + (v[2] - m.firstVertex)];
+    // d = db1 e1 + db2 e2 (d lies in the triangle's plane): normal equations.
+    Float g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2), det = g11 * g22 - g12 * g12;
+    if (!(std::abs(det) > 0)) return Vec3f(0, 0, 0);
+    Float r1 = Dot(e1, d), r2 = Dot(e2, d);
+    Float db1 = (g22 * r1 - g12 * r2) / det, db2 = (g11 * r2 - g12 * r1) / det;
+    Float b1 = hit.b1, b2 = hit.b2;
+    Vec3f N = n0 * (1 - b1 - b2) + n1 * b1 + n2 * b2;
+    Float len = Length(N);
+    if (!(len > 0)) return Vec3f(0, 0, 0);
+    Vec3f dN = (n1 - n0) * db1 + (n2 - n0) * db2;
+    return (dN - si.ns * Dot(si.ns, dN)) / len;
+}
+
+// Barycentrics (b1, b2) of point p (in or near the triangle's plane) in triangle p0 p1 p2.
+LU_INLINE void TriangleBarycentrics(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, const Vec3f &p, Float *b1,
+                                    Float *b2) {
+    Vec3f e1 = p1 - p0, e2 = p2 - p0, w = p - p0;
+    Float g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2), det = g11 * g22 - g12 * g12;
+    Float r1 = Dot(w, e1), r2 = Dot(w, e2);
+    *b1 = det != 0 ? (g22 * r1 - g12 * r2) / det : 0;
+    *b2 = det != 0 ? (g11 * r2 - g12 * r1) / det : 0;
+}
+
+// pbrt-v4's shading dpdu, dpdv (Triangle, Sphere, Disk InteractionFromIntersection) at the hit si
+// and the derivatives of the unit shading normal along them (ShadingNormalDerivative; pbrt-v4
+// differentiates a mesh's unnormalized interpolated normal and does not flip a reversed
+// sphere's, which agree to first order in the displacement for unit vertex normals). Computed
+// from si alone (a triangle's barycentrics from si.p), so that hits need not carry them.
+LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const SurfaceInteraction &si) {
+    ShadingDerivatives d;
+    const Shape &shape = s.shapes[si.shape];
+    HitRecord hit;
+    hit.shape = si.shape;
+    hit.primitive = si.primitive;
+    switch (shape.kind) {
+    case ShapeKind::Triangles: {
+        const TriangleMesh &m = s.triangleMeshes[shape.index];
+        uint32_t v[3];
+        TriangleVertices(s, m, si.primitive, v);
+        Vec3f p0 = s.positions[v[0]], p1 = s.positions[v[1]], p2 = s.positions[v[2]];
+        Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
+        if (m.uvOffset != NoIndex) {
+            uv0 = s.uvs[m.uvOffset + (v[0] - m.firstVertex)];
+            uv1 = s.uvs[m.uvOffset + (v[1] - m.firstVertex)];
+            uv2 = s.uvs[m.uvOffset + (v[2] - m.firstVertex)];
+        }
+        Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+        Float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        bool degenerate = std::abs(det) < 1e-9f;
+        if (!degenerate) {
+            d.dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
+            d.dpdv = (dp12 * duv02.x - dp02 * duv12.x) / det;
+        }
+        if (degenerate || LengthSquared(Cross(d.dpdu, d.dpdv)) == 0) {
+            Vec3f ng = Cross(p2 - p0, p1 - p0);
+            if (LengthSquared(ng) == 0) return d;   // a degenerate triangle: no tangent plane
+            CoordinateSystem(Normalize(ng), &d.dpdu, &d.dpdv);
+        }
+        if (m.normalOffset == NoIndex) return d;   // flat: dndu = dndv = 0
+        TriangleBarycentrics(p0, p1, p2, si.p, &hit.b1, &hit.b2);
+        d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);
+        d.dndv = ShadingNormalDerivative(s, hit, si, d.dpdv);
+        // pbrt-v4's shading tangents: ts = ns x dpdu, ss = ts x ns.
+        Vec3f ts = Cross(si.ns, d.dpdu);
+        if (LengthSquared(ts) > 0) {
+            d.dpdu = Cross(ts, si.ns);
+            d.dpdv = ts;
+        } else {
+            CoordinateSystem(si.ns, &d.dpdu, &d.dpdv);
+        }
+        return d;
+    }
+    case ShapeKind::Sphere: {
+        const Sphere &sp = s.spheres[shape.index];
+        Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(si.p);
+        Float r = sp.radius, zRadius = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+        Float cosPhi = zRadius > 0 ? pObj.x / zRadius : 1, sinPhi = zRadius > 0 ? pObj.y / zRadius : 0;
+        Float sinTheta = SafeSqrt(1 - Sqr(Clamp(pObj.z / r, Float(-1), Float(1))));
+        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
+        // v = 1 - theta / pi: dp/dv = (thetaMax - thetaMin) (z cos phi, z sin phi, -r sin theta), thetaMax - thetaMin = -pi.
+        Vec3f dpdvObj = Vec3f(pObj.z * cosPhi, pObj.z * sinPhi, -r * sinTheta) * -Pi;
+        d.dpdu = sp.renderFromObject.ApplyVector(dpduObj);
+        d.dpdv = sp.renderFromObject.ApplyVector(dpdvObj);
+        d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);
+        d.dndv = ShadingNormalDerivative(s, hit, si, d.dpdv);
+        return d;
+    }
+    case ShapeKind::Disk: {
+        const Disk &dk = s.disks[shape.index];
+        Vec3f pObj = dk.renderFromObject.Inverted().ApplyPoint(si.p);
+        Float rHit = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
+        Vec3f radial = rHit > 0 ? Vec3f(pObj.x / rHit, pObj.y / rHit, 0) : Vec3f(1, 0, 0);
+        d.dpdu = dk.renderFromObject.ApplyVector(dpduObj);
+        d.dpdv = dk.renderFromObject.ApplyVector(radial * (dk.innerRadius - dk.radius));
+        return d;   // flat: dndu = dndv = 0
+    }
+    }
+    return d;
+}
+
 // Surface area of one primitive (for light power and area sampling).
 LU_INLINE Float PrimitiveArea(const SceneView &s, const Shape &shape, uint32_t prim) {
     switch (shape.kind) {

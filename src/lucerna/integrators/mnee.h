@@ -63,38 +63,6 @@ struct MneeThroughput {
 // Tangent basis (a, b) of unit normal n.
 LU_INLINE void MneeBasis(const Vec3f &n, Vec3f *a, Vec3f *b) { CoordinateSystem(n, a, b); }
 
-// Derivative of the shading normal along the tangent direction d (in the geometric plane).
-LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord &hit, const SurfaceInteraction &si,
-                                        const Vec3f &d) {
-    const Shape &shape = scene.shapes[hit.shape];
-    if (shape.kind == ShapeKind::Sphere) {
-        const Sphere &sp = scene.spheres[shape.index];
-        Float R = sp.radius * Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
-        Vec3f dn = d / R;
-        return sp.flipNormals ? -dn : dn;
-    }
-    if (shape.kind != ShapeKind::Triangles) return Vec3f(0, 0, 0);
-    const TriangleMesh &m = scene.triangleMeshes[shape.index];
-    if (m.normalOffset == NoIndex) return Vec3f(0, 0, 0);
-    uint32_t v[3];
-    TriangleVertices(scene, m, hit.primitive, v);
-    Vec3f e1 = scene.positions[v[1]] - scene.positions[v[0]], e2 = scene.positions[v[2]] - scene.positions[v[0]];
-    Vec3f n0 = scene.normals[m.normalOffset + (v[0] - m.firstVertex)];
-    Vec3f n1 = scene.normals[m.normalOffset + (v[1] - m.firstVertex)];
-    Vec3f n2 = scene.normals[m.normalOffset + (v[2] - m.firstVertex)];
-    // d = db1 e1 + db2 e2 (d lies in the triangle's plane): normal equations.
-    Float g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2), det = g11 * g22 - g12 * g12;
-    if (!(std::abs(det) > 0)) return Vec3f(0, 0, 0);
-    Float r1 = Dot(e1, d), r2 = Dot(e2, d);
-    Float db1 = (g22 * r1 - g12 * r2) / det, db2 = (g11 * r2 - g12 * r1) / det;
-    Float b1 = hit.b1, b2 = hit.b2;
-    Vec3f N = n0 * (1 - b1 - b2) + n1 * b1 + n2 * b2;
-    Float len = Length(N);
-    if (!(len > 0)) return Vec3f(0, 0, 0);
-    Vec3f dN = (n1 - n0) * db1 + (n2 - n0) * db2;
-    return (dN - si.ns * Dot(si.ns, dN)) / len;
-}
-
 // What the walk along a segment found.
 enum class MneeSurfaceKind : uint8_t { None, Refractive, Blocking };
 
@@ -124,8 +92,10 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     if (si.material == NoIndex) return MneeSurfaceKind::None;
     const Material &mat = ResolveMixMaterial(scene.materials[si.material], si, scene);   // a mix: its pick at si
     if (mat.kind != MaterialKind::Dielectric && mat.kind != MaterialKind::ThinDielectric) return MneeSurfaceKind::Blocking;
-    // The solver uses the interpolated normal; a normal-mapped surface is not a chain vertex.
-    if (mat.normalMap != NoIndex) return MneeSurfaceKind::Blocking;
+    // The solver uses the interpolated normal and one index per surface; a normal- or
+    // bump-mapped surface or a textured index is not a chain vertex.
+    if (mat.normalMap != NoIndex || mat.displacement != NoIndex || mat.etaTexture != NoIndex)
+        return MneeSurfaceKind::Blocking;
     // A dispersive index ends the secondary wavelengths at the vertex: not for MNEE (decided by
     // the material alone, so that the emitter-hit weight decides as the light sample did).
     if (!mat.eta.IsConstant()) return MneeSurfaceKind::Blocking;

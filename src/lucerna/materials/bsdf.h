@@ -5,6 +5,7 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
+#include "lucerna/geometry/shapes.h"
 #include "lucerna/materials/bxdfs.h"
 #include "lucerna/materials/texture.h"
 
@@ -235,11 +236,18 @@ LU_INLINE TrowbridgeReitzDistribution MakeDistribution(const Material &m, const 
 
 // Relative index of refraction at the hero wavelength; a non-constant (dispersive) eta keeps
 // only the hero wavelength. 0 is treated as 1, as pbrt-v4 does.
+// A material's textured eta (etaTexture) is evaluated at ctx and is the same at every wavelength.
 LU_INLINE Float SampleEta(const Spectrum &eta, SampledWavelengths &lambda, const SceneView &scene) {
     Float e = EvalSpectrum(eta, lambda.lambda[0], scene.spectra);
     if (!eta.IsConstant()) lambda.TerminateSecondary();
     if (e == 0) e = 1;
     return e;
+}
+LU_INLINE Float SampleEta(const Material &m, const TextureEvalContext &ctx, SampledWavelengths &lambda,
+                          const SceneView &scene) {
+    if (m.etaTexture == NoIndex) return SampleEta(m.eta, lambda, scene);
+    Float e = EvalFloatTexture(scene.floatTextures[m.etaTexture], ctx, scene);
+    return e == 0 ? 1 : e;
 }
 
 // Complex index of a conductor (conductor, coatedconductor's base): eta/k textures, or pbrt-v4's
@@ -309,8 +317,40 @@ LU_INLINE Frame NormalMappedFrame(const Frame &f, const ImageData &img, const Sc
     return r;
 }
 
+// pbrt-v4's BumpMap: the surface displaced by the texture D along the shading normal,
+// p' = p + D ns, has tangents dp'/du = dpdu + dD/du ns + D dndu (and in v); dD/du by forward
+// differences of du = dv = 0.0005 (pbrt-v4's step without ray differentials, which Lucerna has
+// not). Its normal dp'/du x dp'/dv, on n's side, and the tangent dp'/du make the frame. A
+// degenerate displaced frame keeps f.
+LU_INLINE Frame BumpMappedFrame(const Frame &f, const FloatTexture &disp, const SurfaceInteraction &si,
+                                const SceneView &scene) {
+    constexpr Float du = .0005f, dv = .0005f;
+    ShadingDerivatives sd = ComputeShadingDerivatives(scene, si);
+    TextureEvalContext ctx;
+    ctx.p = si.p;
+    ctx.n = si.n;
+    ctx.uv = si.uv;
+    Float displace = EvalFloatTexture(disp, ctx, scene);
+    TextureEvalContext shifted = ctx;
+    shifted.p = si.p + sd.dpdu * du;
+    shifted.uv = Vec2f(si.uv.x + du, si.uv.y);
+    Float uDisplace = EvalFloatTexture(disp, shifted, scene);
+    shifted.p = si.p + sd.dpdv * dv;
+    shifted.uv = Vec2f(si.uv.x, si.uv.y + dv);
+    Float vDisplace = EvalFloatTexture(disp, shifted, scene);
+    Vec3f dpdu = sd.dpdu + si.ns * ((uDisplace - displace) / du) + sd.dndu * displace;
+    Vec3f dpdv = sd.dpdv + si.ns * ((vDisplace - displace) / dv) + sd.dndv * displace;
+    Vec3f ns = Cross(dpdu, dpdv);
+    Float l2 = LengthSquared(ns);
+    if (!(l2 > 0) || !(l2 < Infinity)) return f;
+    ns = ns / std::sqrt(l2);
+    if (Dot(ns, si.n) < 0) ns = -ns;    // pbrt-v4's SetShadingGeometry: FaceForward(ns, n)
+    return Frame::FromXZ(dpdu, ns);
+}
+
 // Evaluates the textures of material m at si and builds the BSDF in si's shading frame (z =
-// si.ns, x along si.dpdu; with a normal map, NormalMappedFrame of it). Returns false for
+// si.ns, x along si.dpdu; with a normal map, NormalMappedFrame of it, else with a displacement
+// texture BumpMappedFrame). Returns false for
 // interface materials (no surface). A mix material is first resolved to the material it picks at
 // si (ResolveMixMaterial). May call lambda.TerminateSecondary() (dispersive dielectrics, coats).
 LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, SampledWavelengths &lambda,
@@ -324,6 +364,8 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
     bsdf->shadingFrame = Frame::FromXZ(si.dpdu, si.ns);
     if (m.normalMap != NoIndex)
         bsdf->shadingFrame = NormalMappedFrame(bsdf->shadingFrame, scene.images[m.normalMap], scene, si.uv, si.n);
+    else if (m.displacement != NoIndex)
+        bsdf->shadingFrame = BumpMappedFrame(bsdf->shadingFrame, scene.floatTextures[m.displacement], si, scene);
     switch (m.kind) {
     case MaterialKind::Diffuse: {
         SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, 1);
@@ -340,13 +382,13 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         return true;
     }
     case MaterialKind::Dielectric: {
-        Float eta = SampleEta(m.eta, lambda, scene);
+        Float eta = SampleEta(m, ctx, lambda, scene);
         bsdf->kind = BxDFKind::Dielectric;
         bsdf->dielectric = DielectricBxDF(eta, MakeDistribution(m, ctx, scene));
         return true;
     }
     case MaterialKind::ThinDielectric: {
-        Float eta = SampleEta(m.eta, lambda, scene);
+        Float eta = SampleEta(m, ctx, lambda, scene);
         bsdf->kind = BxDFKind::ThinDielectric;
         bsdf->thinDielectric = ThinDielectricBxDF(eta);
         return true;
@@ -355,7 +397,7 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         SampledSpectrum r = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, 1);
         TrowbridgeReitzDistribution distrib = MakeDistribution(m, ctx, scene);
         Float thick = EvalFloatTexture(m.thickness, ctx, scene);
-        Float eta = SampleEta(m.eta, lambda, scene);
+        Float eta = SampleEta(m, ctx, lambda, scene);
         SampledSpectrum a = ClampSpectrum(EvalSpectrumTexture(m.albedo, ctx, lambda, scene), 0, 1);
         Float gg = Clamp(EvalFloatTexture(m.g, ctx, scene), Float(-1), Float(1));
         bsdf->kind = BxDFKind::CoatedDiffuse;
@@ -367,7 +409,7 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         // pbrt-v4's CoatedConductorMaterial::GetBxDF: the base's index is relative to the coat.
         TrowbridgeReitzDistribution interfaceDistrib = MakeDistribution(m, ctx, scene);
         Float thick = EvalFloatTexture(m.thickness, ctx, scene);
-        Float ieta = SampleEta(m.eta, lambda, scene);
+        Float ieta = SampleEta(m, ctx, lambda, scene);
         SampledSpectrum ce, ck;
         ConductorEtaK(m, ctx, lambda, scene, &ce, &ck);
         ce /= ieta;

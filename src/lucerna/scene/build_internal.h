@@ -165,6 +165,9 @@ void IndexTextures(BuildContext &ctx);
 std::optional<FloatTexture> GetFloatTextureOrNull(BuildContext &ctx, const ParameterDictionary &params,
                                                   const std::string &name);
 FloatTexture GetFloatTexture(BuildContext &ctx, const ParameterDictionary &params, const std::string &name, Float def);
+// The same parameter as a floatTextures index (a named texture stored once), for materials that
+// keep a texture by index (displacement, textured eta).
+uint32_t GetFloatTextureNode(BuildContext &ctx, const ParameterDictionary &params, const std::string &name, Float def);
 std::optional<SpectrumTexture> GetSpectrumTextureOrNull(BuildContext &ctx, const ParameterDictionary &params,
                                                         const std::string &name, SpectrumType type);
 SpectrumTexture GetSpectrumTexture(BuildContext &ctx, const ParameterDictionary &params, const std::string &name,

@@ -78,14 +78,18 @@ bool IsUnsupportedMaterialType(const std::string &t) {
 
 // "eta" of dielectrics and coated diffuse ("interface.eta" of the coated conductor): a float
 // (GetFloatArray(name)[0]) or a spectrum.
-Spectrum ReadEta(BuildContext &ctx, const ParameterDictionary &p, const std::string &name = "eta") {
+// A float or spectrum eta into m.eta; a float texture ("texture" parameter) into m.etaTexture.
+void ReadEta(BuildContext &ctx, const ParameterDictionary &p, Material &m, const std::string &name = "eta") {
     if (p.TypeOf(name) == "float") {
         std::vector<double> v = p.GetFloatArray(name);
-        return Spectrum::Const(Float(v.empty() ? 1.5 : v[0]));
+        m.eta = Spectrum::Const(Float(v.empty() ? 1.5 : v[0]));
+    } else if (p.TypeOf(name) == "texture") {
+        m.etaTexture = GetFloatTextureNode(ctx, p, name, 1.5f);
+    } else if (std::optional<Spectrum> s = GetSpectrum(ctx, p, name, SpectrumType::Unbounded)) {
+        m.eta = *s;
+    } else {
+        m.eta = Spectrum::Const(1.5f);
     }
-    if (p.TypeOf(name) == "texture") FailUnsupported(ParamLoc(p, name, {}), "textured " + Quoted(name));
-    if (std::optional<Spectrum> s = GetSpectrum(ctx, p, name, SpectrumType::Unbounded)) return *s;
-    return Spectrum::Const(1.5f);
 }
 
 // PREFIXuroughness / PREFIXvroughness, else PREFIXroughness (default 0).
@@ -162,7 +166,7 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
         m.kind = MaterialKind::CoatedConductor;
         ReadRoughness(ctx, p, &m.uRoughness, &m.vRoughness, "interface.");
         m.thickness = GetFloatTexture(ctx, p, "thickness", 0.01f);
-        m.eta = ReadEta(ctx, p, "interface.eta");
+        ReadEta(ctx, p, m, "interface.eta");
         ReadRoughness(ctx, p, &m.conductorURoughness, &m.conductorVRoughness, "conductor.");
         ReadConductorIndex(ctx, p, m, "conductor.eta", "conductor.k", "coated conductor", loc);
         m.maxDepth = p.GetOneInt("maxdepth", 10);
@@ -186,17 +190,17 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
         m.amount = GetFloatTexture(ctx, p, "amount", 0.5f);
     } else if (type == "dielectric") {
         m.kind = MaterialKind::Dielectric;
-        m.eta = ReadEta(ctx, p);
+        ReadEta(ctx, p, m);
         ReadRoughness(ctx, p, m);
     } else if (type == "thindielectric") {
         m.kind = MaterialKind::ThinDielectric;
-        m.eta = ReadEta(ctx, p);
+        ReadEta(ctx, p, m);
     } else if (type == "coateddiffuse") {
         m.kind = MaterialKind::CoatedDiffuse;
         m.reflectance = GetSpectrumTexture(ctx, p, "reflectance", SpectrumType::Albedo, Spectrum::Const(0.5f));
         ReadRoughness(ctx, p, m);
         m.thickness = GetFloatTexture(ctx, p, "thickness", 0.01f);
-        m.eta = ReadEta(ctx, p);
+        ReadEta(ctx, p, m);
         m.maxDepth = p.GetOneInt("maxdepth", 10);
         m.nSamples = p.GetOneInt("nsamples", 1);
         m.g = GetFloatTexture(ctx, p, "g", 0);
@@ -204,10 +208,10 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
     } else {
         Fail(loc, "unknown material type " + Quoted(type));
     }
-    // Bump and normal mapping change the shading normal: refuse rather than ignore.
-    if (p.Has("displacement")) FailUnsupported(ParamLoc(p, "displacement", loc), "material \"displacement\" (bump mapping)");
-    // pbrt-v4 reads "normalmap" for every material and the mix ignores it: here it is reported unused.
+    // pbrt-v4 reads "displacement" and "normalmap" for every material and the mix ignores them:
+    // here they are reported unused.
     if (m.kind != MaterialKind::Mix) {
+        if (p.Has("displacement")) m.displacement = GetFloatTextureNode(ctx, p, "displacement", 0);
         std::string normalMap = p.GetOneString("normalmap", "");
         if (!normalMap.empty()) {
             FileLoc at = ParamLoc(p, "normalmap", loc);

@@ -533,6 +533,10 @@ SpectrumTexture BuildSpectrumTexture(BuildContext &ctx, const TextureEntity &te,
 
 }  // namespace
 
+uint32_t GetFloatTextureNode(BuildContext &ctx, const ParameterDictionary &params, const std::string &name, Float def) {
+    return FloatChild(ctx, params, name, def);
+}
+
 // ---- Texture parameters of materials and textures (pbrt-v4's TextureParameterDictionary) ----
 
 std::optional<FloatTexture> GetFloatTextureOrNull(BuildContext &ctx, const ParameterDictionary &params,

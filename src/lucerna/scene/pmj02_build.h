@@ -1,0 +1,22 @@
+// Lucerna (host): progressive multi-jittered (0,2) sample sequences (Christensen, Kensler,
+// Kilpatrick 2018, "Progressive Multi-Jittered Sample Sequences", the pmj02 construction), our own
+// generator: every prefix of 2^k points is a (0,2)-net in base 2 (each elementary interval of area
+// 2^-k holds exactly one point). Built at scene-build time for the pmj02bn sampler's tables.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "lucerna/util/vecmath.h"
+
+namespace lu {
+
+// count points (a power of two, 1 .. 2^20) of one pmj02 sequence, from seed. *restarts (when
+// given) receives how many times the construction met a dead end and began again.
+std::vector<Vec2f> GeneratePMJ02(uint32_t count, uint64_t seed, int *restarts = nullptr);
+
+// Whether points[0, 2^log2n) is a (0,2)-net in base 2: for every a in 0..log2n, each of the
+// 2^a x 2^(log2n - a) elementary intervals holds exactly one point.
+bool IsZeroTwoNet(const std::vector<Vec2f> &points, int log2n);
+
+}  // namespace lu
