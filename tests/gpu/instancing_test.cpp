@@ -51,7 +51,11 @@ std::vector<Definition> Definitions(bool glass) {
     return {{"gem", gem + kOcta},
             {"gemrev", "ReverseOrientation\n" + rev + "Translate 0 0 0.1\n" + kOcta},
             {"balls", "Material \"diffuse\" \"rgb reflectance\" [0.7 0.2 0.2]\nShape \"sphere\" \"float radius\" 0.3\n"
-                      "Translate 0.5 0 0\nMaterial \"conductor\"\nShape \"disk\" \"float radius\" 0.25\n"}};
+                      "Translate 0.5 0 0\nMaterial \"conductor\"\nShape \"disk\" \"float radius\" 0.25\n"},
+            // No shading normals: the geometric normal's orientation is the triangles' own.
+            {"plate", "Material \"diffuse\" \"rgb reflectance\" [0.2 0.2 0.7]\n"
+                      "Shape \"trianglemesh\" \"point3 P\" [0 0 0  0.4 0 0  0.4 0.3 0.1  0 0.3 0.1] "
+                      "\"integer indices\" [0 1 2 0 2 3]\n"}};
 }
 struct Use {
     const char *object;
@@ -67,6 +71,8 @@ const Use kUses[] = {
     {"gemrev", "Translate 0.6 -1 0.5 Rotate 20 0 1 0 Scale 0.4 -0.3 0.5"},
     {"balls", "Translate -1.3 1.2 0.4 Rotate 60 0 1 0"},
     {"balls", "Translate 1.1 1.2 0.5 Rotate -30 0 0 1 Scale 1 0.6 1.4"},
+    {"plate", "Translate -0.3 -0.3 1.2 Rotate 70 1 0 0"},
+    {"plate", "Translate 0.3 0.2 1.3 Scale 1 -1 1.5"},
 };
 
 std::string InstancedScene(bool glass = true) {
@@ -95,11 +101,12 @@ std::unique_ptr<HostScene> Build(const std::string &text) {
 TEST(Instancing, SceneKeepsPrototypesOnce) {
     auto inst = Build(InstancedScene());
     auto flat = Build(FlattenedScene());
-    EXPECT_EQ(inst->prototypes.size(), 3u);
+    EXPECT_EQ(inst->prototypes.size(), 4u);
     EXPECT_EQ(inst->instances.size(), std::size(kUses));
     EXPECT_TRUE(flat->instances.empty());
-    // Prototype geometry once: 3 octahedra' worth of vertices less than the 5 flattened copies.
-    EXPECT_EQ(flat->positions.size() - inst->positions.size(), (5 - 2) * 6u);
+    // Prototype geometry once: 2 octahedra (of 5 copies) and 1 plate (of 2).
+    EXPECT_EQ(flat->positions.size() - inst->positions.size(), (5 - 2) * 6u + (2 - 1) * 4u);
+    EXPECT_EQ(inst->stats.triangles, flat->stats.triangles);
     // A handedness-swapping use is marked.
     EXPECT_EQ(inst->instances[2].swapsHandedness, 1u);
     EXPECT_EQ(inst->instances[0].swapsHandedness, 0u);
@@ -112,7 +119,7 @@ TEST(Instancing, HitsMatchFlattenedHits) {
     auto flat = Build(FlattenedScene());
     SceneView vi = inst->View(), vf = flat->View();
     GpuBVH bi = BuildBVH(vi), bf = BuildBVH(vf);
-    EXPECT_EQ(bi.prototypeRoots.size(), 3u);
+    EXPECT_EQ(bi.prototypeRoots.size(), 4u);
     EmbreeScene ei(vi), ef(vf);
     BVHTracer ti{bi.View(), &vi}, tf{bf.View(), &vf};
     Bounds3f box;
@@ -194,7 +201,7 @@ TEST(Instancing, GlassRenderMatchesFlattenedSceneStatistically) {
     auto inst = Build(InstancedScene(true));
     auto flat = Build(FlattenedScene(true));
     const int kSeeds = 6, kSpp = 8, block = 8;
-    const int tests = 2 * (48 / block) * (48 / block) * 3;
+    const int tests = 2 * (48 / block) * (48 / block) * 3;   // both tracers
     const double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
     for (CpuTracer tracer : {CpuTracer::Embree, CpuTracer::BVH}) {
         std::vector<Image> a, b;

@@ -198,7 +198,7 @@ TEST(Parser, ObjectInstancing) {
     ExpectPoint(d.RenderFromInstance(d.instances[0]), Vec3f(0, 0, 0), Vec3f(1, 0, 0));
     // The compact use record: the object by index, the location as (file, line, col).
     EXPECT_EQ(d.ObjectName(d.instances[1]), "tree");
-    EXPECT_EQ(d.Loc(d.instances[1]).line, 7);
+    EXPECT_EQ(d.Loc(d.instances[1]).line, 8);
     EXPECT_EQ(d.Loc(d.instances[1]).col, 1);
     EXPECT_EQ(d.instances[0].projective, 0xffffffffu);
 }
