@@ -95,10 +95,14 @@ void CompareWithReference(const RefCase &rc) {
 // The volumetric caustic with its homogeneous medium (scene-v4.pbrt) against pbrt-v4's bdpt at
 // 96x96, 1024 spp, in 16x16-block means: one render, the standard error of each block's mean
 // difference from the spread of the per-pixel differences (so the reference's own noise is in
-// it), Sidak-corrected at family-wise 1e-3 (image/metrics.h, ZTestBlocks). A 15% systematic
-// tolerance is allowed: the same scene without its medium shows Lucerna 3-11% below this bdpt
-// reference already (path, 64 spp, 128x128: 169 of 192 blocks beyond the bound, images
-// bit-identical to before media existed), a difference that is not the media's.
+// it), Sidak-corrected at family-wise 1e-3 (image/metrics.h, ZTestBlocks), with a 2%
+// systematic tolerance as for veach-mis (heavy tails: at 64 spp the floor corner is 14% low with
+// |z| 4.6 unaided; scaling the render by 0.95 fails the regpath check). The 15% allowed before
+// was for a gap that is path's, not a bias: on the scene without its medium (ref-volumetric-
+// caustic.pbrt, 128x128, 256 spp) regpath is within 1-2% of pbrt-v4's bdpt in every 16-row band
+// below the light's own rows (with and without MNEE), while path is 5-10% low on the walls and
+// the ceiling: light reflected and refracted by the glass ball off a 5x4 mm light is reached by
+// path only by hitting that light.
 // regpath is tested on every block; path, unbiased but sampling the light through the glass
 // ball only by hitting the 5x4 mm light, on the blocks that light does not reach through the
 // ball (the top rows, above the ball and its beam): at CI's spp its mean there is far below
@@ -119,7 +123,7 @@ ZTestResult MediumReferenceZTest(IntegratorKind integrator, int spp, int rows) {
     ZTestOptions zo;
     zo.blockSize = 16;
     zo.alpha = 1e-3;
-    zo.relTolerance = 0.15;
+    zo.relTolerance = 0.02;
     zo.crop = Crop{0, 0, s->refWidth, rows};
     ZTestResult z = ZTestBlocks(r.image, ref, zo);
     std::printf("volumetric-caustic-medium %s %d spp: %s\n", IntegratorName(integrator), spp, z.Summary().c_str());
