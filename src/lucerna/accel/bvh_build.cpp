@@ -417,7 +417,12 @@ GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
     }
     bvh.stats.primitives = uint32_t(refs.size());
     for (const Bounds3f &b : boxes) bvh.bounds.Expand(b);
-    BuildTree(refs, boxes, options, bvh);
+    // With instances the top tree is built without spatial splits: splitting instance boxes buys
+    // little and doubles the builder's arrays (3.2 M instances: 1.34 GB peak and 84 s with
+    // splits; docs/benchmarks.md). Scenes without instances build as before.
+    BVHBuildOptions topOptions = options;
+    if (scene.instances.size > 0) topOptions.spatialSplits = false;
+    BuildTree(refs, boxes, topOptions, bvh);
 
     // ---- Bottom levels: one tree per prototype (object space) ----
     for (uint32_t p = 0; p < scene.prototypes.size; ++p) {
