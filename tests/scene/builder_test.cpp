@@ -223,10 +223,14 @@ TEST(TestScenes, Features) {
     EXPECT_EQ(s->disks.size(), 2u);
     EXPECT_EQ(s->stats.instanceUses, 2);
     EXPECT_EQ(s->camera.lensRadius, 0.01f);
-    // The mirrored instance's triangles flip (handedness swap); the other's do not.
-    ASSERT_EQ(s->triangleMeshes.size(), 3u);
+    // The box is used twice: one prototype in object space and two instances. The mirrored
+    // instance swaps handedness (its triangles flip at the hit, geometry/shapes.h); the other not.
+    ASSERT_EQ(s->triangleMeshes.size(), 2u);
+    ASSERT_EQ(s->prototypes.size(), 1u);
+    ASSERT_EQ(s->instances.size(), 2u);
     EXPECT_FALSE(s->triangleMeshes[1].flipNormals);
-    EXPECT_TRUE(s->triangleMeshes[2].flipNormals);
+    EXPECT_EQ(s->instances[0].swapsHandedness, 0u);
+    EXPECT_EQ(s->instances[1].swapsHandedness, 1u);
     const Material &gold = s->materials[s->shapes[1].material];
     EXPECT_EQ(gold.kind, MaterialKind::Conductor);
     EXPECT_FLOAT_EQ(gold.uRoughness.value, 0.1f);  // the constant texture

@@ -195,7 +195,22 @@ TEST(Parser, ObjectInstancing) {
     ASSERT_EQ(d.instanceDefinitions.count("tree"), 1u);
     EXPECT_EQ(d.instanceDefinitions.at("tree").shapes.size(), 2u);
     ASSERT_EQ(d.instances.size(), 2u);
-    ExpectPoint(d.instances[0].renderFromInstance, Vec3f(0, 0, 0), Vec3f(1, 0, 0));
+    ExpectPoint(d.RenderFromInstance(d.instances[0]), Vec3f(0, 0, 0), Vec3f(1, 0, 0));
+    // The compact use record: the object by index, the location as (file, line, col).
+    EXPECT_EQ(d.ObjectName(d.instances[1]), "tree");
+    EXPECT_EQ(d.Loc(d.instances[1]).line, 8);
+    EXPECT_EQ(d.Loc(d.instances[1]).col, 1);
+    EXPECT_EQ(d.instances[0].projective, 0xffffffffu);
+}
+
+TEST(Parser, ProjectiveObjectInstanceKeepsItsTransform) {
+    SceneDescription d = Parse(
+        "WorldBegin\nObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\n"
+        "Transform [1 0 0 0  0 1 0 0  0 0 1 0.5  0 0 0 1]\nObjectInstance \"a\"\n");
+    ASSERT_EQ(d.instances.size(), 1u);
+    ASSERT_NE(d.instances[0].projective, 0xffffffffu);
+    Transform t = d.RenderFromInstance(d.instances[0]);
+    EXPECT_EQ(t.m.m[3][2], 0.5f);
 }
 
 TEST(Parser, OptionsColorSpaceAndSceneWideEntities) {

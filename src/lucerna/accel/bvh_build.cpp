@@ -1,5 +1,6 @@
 // Lucerna: host BVH construction with Embree 3's generic builder (rtcBuildBVH, high quality =
-// binned SAH with spatial splits, Stich et al. 2009), flattened into the GPU node layout of bvh.h.
+// binned SAH with spatial splits, Stich et al. 2009), flattened into the GPU node layout of bvh.h;
+// with object instances two levels: the top tree (node 0) then one tree per prototype.
 #include "lucerna/accel/bvh_build.h"
 
 #include <embree3/rtcore.h>
@@ -269,14 +270,12 @@ BVHStats ComputeBVHStats(const GpuBVH &bvh) {
     return s;
 }
 
-GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
-    auto start = std::chrono::steady_clock::now();
-    GpuBVH bvh;
+namespace {
 
-    // ---- Primitive references ----
-    std::vector<PrimRef> refs;
-    std::vector<Bounds3f> boxes;
-    for (uint32_t s = 0; s < scene.shapes.size; ++s) {
+// Primitive references of shapes [first, end): triangles with their vertices, analytic shapes.
+void AddShapeRefs(const SceneView &scene, uint32_t first, uint32_t end, std::vector<PrimRef> *refs,
+                  std::vector<Bounds3f> *boxes) {
+    for (uint32_t s = first; s < end; ++s) {
         const Shape &shape = scene.shapes[s];
         if (shape.kind == ShapeKind::Triangles) {
             const TriangleMesh &m = scene.triangleMeshes[shape.index];
@@ -293,8 +292,8 @@ GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
                 if (!IsFinite(r.p0) || !IsFinite(r.p1) || !IsFinite(r.p2)) continue;
                 Bounds3f b;
                 b.Expand(r.p0); b.Expand(r.p1); b.Expand(r.p2);
-                refs.push_back(r);
-                boxes.push_back(b);
+                refs->push_back(r);
+                boxes->push_back(b);
             }
         } else {
             PrimRef r;
@@ -303,18 +302,19 @@ GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
             r.kind = uint32_t(shape.kind);
             Bounds3f b = PrimitiveBounds(scene, s, 0);
             if (!IsFinite(b.pMin) || !IsFinite(b.pMax)) continue;
-            refs.push_back(r);
-            boxes.push_back(b);
+            refs->push_back(r);
+            boxes->push_back(b);
         }
     }
-    bvh.stats.primitives = uint32_t(refs.size());
-    for (const Bounds3f &b : boxes) bvh.bounds.Expand(b);
-    if (refs.empty()) {
-        bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return bvh;
-    }
+}
 
-    // ---- Embree build ----
+// Builds one tree over refs and appends it to bvh (nodes and prims); returns its root node, or
+// -1 for no primitives. The first tree appended is the top level (node 0).
+int32_t BuildTree(const std::vector<PrimRef> &refs, const std::vector<Bounds3f> &boxes,
+                  const BVHBuildOptions &options, GpuBVH &bvh) {
+    if (refs.empty()) return -1;
+    Bounds3f all;
+    for (const Bounds3f &b : boxes) all.Expand(b);
     size_t capacity = options.spatialSplits ? 2 * refs.size() : refs.size();
     std::vector<RTCBuildPrimitive> prims(capacity);
     for (size_t i = 0; i < refs.size(); ++i) {
@@ -363,17 +363,18 @@ GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
 
     // ---- Flatten ----
     Flattener flat{refs, bvh};
-    bvh.nodes.reserve(refs.size());
-    bvh.prims.reserve(refs.size() + refs.size() / 4);
+    bvh.nodes.reserve(bvh.nodes.size() + refs.size());
+    bvh.prims.reserve(bvh.prims.size() + refs.size() + refs.size() / 4);
+    int32_t rootIndex = int32_t(bvh.nodes.size());
     if (root->leaf) {
         // A single leaf: wrap it in a root whose second child is an empty leaf.
         BVHNode node;
         node.child[0] = flat.EmitChild(root, &node.count[0]);
-        node.SetChildBounds(0, bvh.bounds);
+        node.SetChildBounds(0, all);
         node.child[1] = ~int32_t(0);
         node.count[1] = 0;
         Bounds3f empty;
-        empty.pMin = empty.pMax = bvh.bounds.pMin;
+        empty.pMin = empty.pMax = all.pMin;
         node.SetChildBounds(1, empty);
         bvh.nodes.push_back(node);
     } else {
@@ -381,9 +382,61 @@ GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
     }
     rtcReleaseBVH(ebvh);
     rtcReleaseDevice(device);
+    return rootIndex;
+}
+
+}  // namespace
+
+Bounds3f InstanceBounds(const SceneView &scene, uint32_t instance) {
+    const Instance &in = scene.instances[instance];
+    const Bounds3f &ob = scene.prototypes[in.prototype].bounds;
+    Bounds3f b;
+    for (int c = 0; c < 8; ++c)
+        b.Expand(InstancePoint(in.renderFromInstance,
+                               Vec3f(c & 1 ? ob.pMax.x : ob.pMin.x, c & 2 ? ob.pMax.y : ob.pMin.y, c & 4 ? ob.pMax.z : ob.pMin.z)));
+    return PadBounds(b);
+}
+
+GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options) {
+    auto start = std::chrono::steady_clock::now();
+    GpuBVH bvh;
+
+    // ---- Top level: render-space shapes and one reference per instance ----
+    std::vector<PrimRef> refs;
+    std::vector<Bounds3f> boxes;
+    AddShapeRefs(scene, 0, TopLevelShapeCount(scene), &refs, &boxes);
+    for (uint32_t i = 0; i < scene.instances.size; ++i) {
+        PrimRef r;
+        r.shape = i;
+        r.primitive = 0;
+        r.kind = PrimRefInstance;
+        Bounds3f b = InstanceBounds(scene, i);
+        if (!IsFinite(b.pMin) || !IsFinite(b.pMax)) continue;
+        refs.push_back(r);
+        boxes.push_back(b);
+    }
+    bvh.stats.primitives = uint32_t(refs.size());
+    for (const Bounds3f &b : boxes) bvh.bounds.Expand(b);
+    // With instances the top tree is built without spatial splits: splitting instance boxes buys
+    // little and doubles the builder's arrays (3.2 M instances: 1.34 GB peak and 84 s with
+    // splits; docs/benchmarks.md). Scenes without instances build as before.
+    BVHBuildOptions topOptions = options;
+    if (scene.instances.size > 0) topOptions.spatialSplits = false;
+    BuildTree(refs, boxes, topOptions, bvh);
+
+    // ---- Bottom levels: one tree per prototype (object space) ----
+    for (uint32_t p = 0; p < scene.prototypes.size; ++p) {
+        const Prototype &proto = scene.prototypes[p];
+        refs.clear();
+        boxes.clear();
+        AddShapeRefs(scene, proto.firstShape, proto.firstShape + proto.shapeCount, &refs, &boxes);
+        bvh.stats.primitives += uint32_t(refs.size());
+        bvh.prototypeRoots.push_back(bvh.nodes.empty() ? -1 : BuildTree(refs, boxes, options, bvh));
+    }
 
     bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    bvh.stats = ComputeBVHStats(bvh);
+    if (!bvh.nodes.empty()) bvh.stats = ComputeBVHStats(bvh);
+    else bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return bvh;
 }
 

@@ -22,6 +22,7 @@ struct BVHStats {
 struct GpuBVH {
     std::vector<BVHNode> nodes;
     std::vector<PrimRef> prims;
+    std::vector<int32_t> prototypeRoots;   // per SceneView::prototypes entry: its tree's root node
     Bounds3f bounds;             // of the whole scene (all primitives)
     BVHStats stats;
 
@@ -29,6 +30,7 @@ struct GpuBVH {
         BVHView v;
         v.nodes = Span<BVHNode>{nodes.data(), uint32_t(nodes.size())};
         v.prims = Span<PrimRef>{prims.data(), uint32_t(prims.size())};
+        v.prototypeRoots = Span<int32_t>{prototypeRoots.data(), uint32_t(prototypeRoots.size())};
         return v;
     }
 };
@@ -41,12 +43,16 @@ struct BVHBuildOptions {
 };
 
 // Builds the BVH over every triangle, sphere and disk of `scene` (all shapes, interfaces
-// included) with Embree's SAH builder (rtcBuildBVH, RTC_BUILD_QUALITY_HIGH). Host only.
+// included; with instances the top tree holds the render-space shapes and the instances, and each
+// prototype gets a tree of its own) with Embree's SAH builder (rtcBuildBVH, RTC_BUILD_QUALITY_HIGH). Host only.
 GpuBVH BuildBVH(const SceneView &scene, const BVHBuildOptions &options = {});
 
 // Render-space bounds of one primitive (analytic shapes: exact bounds of the transformed
 // sphere/disk, slightly padded for rounding). Host only.
 Bounds3f PrimitiveBounds(const SceneView &scene, uint32_t shape, uint32_t primitive);
+
+// Render-space bounds of one instance: its prototype's object-space box mapped, padded. Host only.
+Bounds3f InstanceBounds(const SceneView &scene, uint32_t instance);
 
 // Recomputes the statistics (SAH cost, depth, counts) of a built tree. Host only.
 BVHStats ComputeBVHStats(const GpuBVH &bvh);

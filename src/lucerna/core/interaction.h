@@ -11,6 +11,7 @@ struct HitRecord {
     uint32_t shape = 0xffffffffu;   // index into SceneView::shapes (the geometry id)
     uint32_t primitive = 0;         // triangle index within the mesh (0 for analytic shapes)
     Float b1 = 0, b2 = 0;           // barycentrics of vertices 1 and 2 (triangles)
+    uint32_t instance = 0xffffffffu; // SceneView::instances index when the shape is a prototype's
     LU_HD bool Hit() const { return shape != 0xffffffffu; }
 };
 

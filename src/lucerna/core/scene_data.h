@@ -186,6 +186,51 @@ struct Shape {
     uint32_t insideMedium = NoIndex, outsideMedium = NoIndex;
 };
 
+// ---- Object instancing (pbrt-v4's ObjectBegin / ObjectInstance, one level) ----
+
+// A prototype: the shapes of one object definition, in object (instance) space, at
+// shapes[firstShape .. firstShape + shapeCount - 1]. Prototype shapes come after every
+// render-space shape (TopLevelShapeCount) and carry no area lights (pbrt-v4 ignores them).
+struct Prototype {
+    uint32_t firstShape = 0, shapeCount = 0;
+    Bounds3f bounds;   // object space
+};
+
+// One use of a prototype: an affine render-from-instance map (top three rows) and its inverse.
+// A hit on an instance is reconstructed in render space (geometry/shapes.h ComputeInteraction):
+// triangle vertices by renderFromInstance, normals by the inverse transpose, the triangle
+// orientation flipped once more when the map swaps handedness (as the flattened copy would be).
+struct Instance {
+    Float renderFromInstance[3][4];
+    Float instanceFromRender[3][4];
+    uint32_t prototype = 0;
+    uint32_t swapsHandedness = 0;   // 1: det of the linear part < 0
+};
+
+LU_INLINE Vec3f InstancePoint(const Float (&m)[3][4], const Vec3f &p) {
+    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3], m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+}
+LU_INLINE Vec3f InstanceVector(const Float (&m)[3][4], const Vec3f &v) {
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+// A normal by the inverse transpose, given the inverse (instanceFromRender).
+LU_INLINE Vec3f InstanceNormal(const Float (&inv)[3][4], const Vec3f &n) {
+    return {inv[0][0] * n.x + inv[1][0] * n.y + inv[2][0] * n.z, inv[0][1] * n.x + inv[1][1] * n.y + inv[2][1] * n.z,
+            inv[0][2] * n.x + inv[1][2] * n.y + inv[2][2] * n.z};
+}
+// The instance's map as a Transform (bottom rows 0 0 0 1).
+LU_INLINE Transform InstanceTransform(const Instance &in) {
+    Transform t;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) {
+            t.m.m[i][j] = in.renderFromInstance[i][j];
+            t.mInv.m[i][j] = in.instanceFromRender[i][j];
+        }
+    return t;
+}
+
 // ---- Lights ----
 
 enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Goniometric, Collimated };
@@ -304,6 +349,8 @@ struct SceneView {
     Span<Sphere> spheres;
     Span<Disk> disks;
     Span<Shape> shapes;
+    Span<Prototype> prototypes;     // object instancing: empty when the scene has none
+    Span<Instance> instances;
     Span<Material> materials;
     Span<Light> lights;
     Span<Float> lightCdf;           // light selection CDF (size lights.size + 1), proportional to power
@@ -332,5 +379,10 @@ struct SceneView {
     FilterData filter;
     Bounds3f bounds;
 };
+
+// Shapes in render space: every shape before the first prototype's.
+LU_INLINE uint32_t TopLevelShapeCount(const SceneView &s) {
+    return s.prototypes.size == 0 ? s.shapes.size : s.prototypes[0].firstShape;
+}
 
 }  // namespace lu

@@ -1,5 +1,5 @@
 // Lucerna: the GPU-friendly binary BVH as plain data (built on the host by accel/bvh_build.h,
-// traversed by geometry/bvh_traverse.h).
+// traversed by geometry/bvh_traverse.h); one level, or two with object instances.
 // Node layout after Aila & Laine 2009 ("Understanding the efficiency of ray traversal on GPUs"):
 // each node stores both children's boxes so one 64-byte fetch decides the traversal order.
 #pragma once
@@ -50,10 +50,17 @@ struct alignas(16) PrimRef {
 };
 static_assert(sizeof(PrimRef) == 48, "PrimRef must stay 48 bytes");
 
+// PrimRef::kind of an object instance in the top-level tree: `shape` is the index into
+// SceneView::instances; its prototype's tree (object space) starts at BVHView::prototypeRoots.
+constexpr uint32_t PrimRefInstance = 3;
+
 // The BVH as spans (host or device memory). An empty `nodes` span means an empty scene.
+// Two levels with object instances: node 0 is the root of the top-level tree (render-space
+// shapes and instances), prototypeRoots[p] the root of prototype p's tree (-1: empty).
 struct BVHView {
     Span<BVHNode> nodes;
     Span<PrimRef> prims;
+    Span<int32_t> prototypeRoots;
 };
 
 // Maximum tree depth the builder produces; the traversal stacks are sized from it.

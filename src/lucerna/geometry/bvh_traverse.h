@@ -1,4 +1,5 @@
-// Lucerna: stack-based BVH traversal shared by the CPU and CUDA backends (no recursion, fixed stack).
+// Lucerna: stack-based BVH traversal shared by the CPU and CUDA backends (no recursion, fixed stack;
+// object instances: the top tree hands the ray, mapped to object space, to the prototype's tree).
 // Ordered traversal of the Aila-Laine node layout (bvh.h); robust slab test after Ize 2013,
 // "Robust BVH Ray Traversal" (far distances scaled by 1 + 2 gamma(3), as pbrt-v4's Bounds3::IntersectP).
 #pragma once
@@ -85,21 +86,29 @@ LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const 
     return false;
 }
 
-// Closest hit along the ray in (0, ray.tMax). On a hit fills *hit (t, shape, primitive, b1, b2)
-// and returns true; otherwise leaves *hit untouched.
-LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, const Ray &ray, HitRecord *hit) {
-    if (bvh.nodes.size == 0) return false;
+// The ray in an instance's object space: same t (the direction is not renormalized).
+LU_INLINE Ray InstanceRay(const Instance &in, const Ray &ray) {
+    Ray r = ray;
+    r.o = InstancePoint(in.instanceFromRender, ray.o);
+    r.d = InstanceVector(in.instanceFromRender, ray.d);
+    return r;
+}
+
+// Closest-hit traversal of the tree at `root` in (0, *tClosest), updating *tClosest and *best.
+// The top level (TopLevel) enters an instance's prototype tree with the ray in object space; the
+// bottom level is a separate instantiation (no recursion on the device).
+template <bool TopLevel>
+LU_INLINE void TraverseClosest(const BVHView &bvh, const SceneView &scene, int32_t root, const Ray &ray,
+                               Float *tClosest, HitRecord *best) {
     Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
-    Float tClosest = ray.tMax;
-    HitRecord best;
     int32_t stack[BVHStackSize];
     int sp = 0;
-    int32_t node = 0;
+    int32_t node = root;
     while (true) {
         BVHNode n = LoadBVHNode(bvh.nodes.ptr + node);
         Float tNear[2];
         bool boxHit[2];
-        IntersectChildBoxes(n, ray.o, invD, tClosest, tNear, boxHit);
+        IntersectChildBoxes(n, ray.o, invD, *tClosest, tNear, boxHit);
         int first = tNear[1] < tNear[0] ? 1 : 0;
         int32_t next[2];
         int nNext = 0;
@@ -108,20 +117,32 @@ LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, cons
             if (!boxHit[i]) continue;
             if (!n.IsLeaf(i)) {
                 // A hit in the nearer leaf may already lie in front of this box.
-                if (tNear[i] <= tClosest) next[nNext++] = n.child[i];
+                if (tNear[i] <= *tClosest) next[nNext++] = n.child[i];
                 continue;
             }
             uint32_t begin = n.FirstPrim(i), end = begin + n.count[i];
             for (uint32_t j = begin; j < end; ++j) {
                 PrimRef p = LoadPrimRef(bvh.prims.ptr + j);
+                if constexpr (TopLevel) {
+                    if (p.kind == PrimRefInstance) {
+                        const Instance &in = scene.instances[p.shape];
+                        int32_t r = bvh.prototypeRoots[in.prototype];
+                        if (r < 0) continue;
+                        Float tBefore = *tClosest;
+                        TraverseClosest<false>(bvh, scene, r, InstanceRay(in, ray), tClosest, best);
+                        if (*tClosest < tBefore) best->instance = p.shape;
+                        continue;
+                    }
+                }
                 Float t, b1, b2;
-                if (IntersectPrimRef(p, scene, ray, tClosest, &t, &b1, &b2)) {
-                    tClosest = t;
-                    best.t = t;
-                    best.shape = p.shape;
-                    best.primitive = p.primitive;
-                    best.b1 = b1;
-                    best.b2 = b2;
+                if (IntersectPrimRef(p, scene, ray, *tClosest, &t, &b1, &b2)) {
+                    *tClosest = t;
+                    best->t = t;
+                    best->shape = p.shape;
+                    best->primitive = p.primitive;
+                    best->b1 = b1;
+                    best->b2 = b2;
+                    best->instance = NoIndex;
                 }
             }
         }
@@ -135,18 +156,27 @@ LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, cons
             node = stack[--sp];
         }
     }
+}
+
+// Closest hit along the ray in (0, ray.tMax). On a hit fills *hit (t, shape, primitive, b1, b2,
+// instance) and returns true; otherwise leaves *hit untouched.
+LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, const Ray &ray, HitRecord *hit) {
+    if (bvh.nodes.size == 0) return false;
+    Float tClosest = ray.tMax;
+    HitRecord best;
+    TraverseClosest<true>(bvh, scene, 0, ray, &tClosest, &best);
     if (!best.Hit()) return false;
     *hit = best;
     return true;
 }
 
-// Any hit in (0, ray.tMax) (shadow rays; tMax exclusive). Returns true if something is hit.
-LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ray &ray) {
-    if (bvh.nodes.size == 0) return false;
+// Any hit in (0, ray.tMax) in the tree at `root` (levels as TraverseClosest).
+template <bool TopLevel>
+LU_INLINE bool TraverseAny(const BVHView &bvh, const SceneView &scene, int32_t root, const Ray &ray) {
     Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
     int32_t stack[BVHStackSize];
     int sp = 0;
-    int32_t node = 0;
+    int32_t node = root;
     while (true) {
         BVHNode n = LoadBVHNode(bvh.nodes.ptr + node);
         Float tNear[2];
@@ -163,6 +193,14 @@ LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ra
             uint32_t begin = n.FirstPrim(i), end = begin + n.count[i];
             for (uint32_t j = begin; j < end; ++j) {
                 PrimRef p = LoadPrimRef(bvh.prims.ptr + j);
+                if constexpr (TopLevel) {
+                    if (p.kind == PrimRefInstance) {
+                        const Instance &in = scene.instances[p.shape];
+                        int32_t r = bvh.prototypeRoots[in.prototype];
+                        if (r >= 0 && TraverseAny<false>(bvh, scene, r, InstanceRay(in, ray))) return true;
+                        continue;
+                    }
+                }
                 Float t, b1, b2;
                 if (IntersectPrimRef(p, scene, ray, ray.tMax, &t, &b1, &b2)) return true;
             }
@@ -180,6 +218,12 @@ LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ra
         }
     }
     return false;
+}
+
+// Any hit in (0, ray.tMax) (shadow rays; tMax exclusive). Returns true if something is hit.
+LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ray &ray) {
+    if (bvh.nodes.size == 0) return false;
+    return TraverseAny<true>(bvh, scene, 0, ray);
 }
 
 // The Tracer of integrators/path.h over this BVH (the CUDA megakernel's; works on the host too).

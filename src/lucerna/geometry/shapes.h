@@ -101,10 +101,14 @@ LU_INLINE void TriangleVertices(const SceneView &s, const TriangleMesh &m, uint3
     v[2] = m.firstVertex + idx[2];
 }
 
-// Builds the SurfaceInteraction for a hit found by any backend.
+// Builds the SurfaceInteraction for a hit found by any backend. A hit on an instance's shape
+// (hit.instance set; the shape is a prototype's, in object space) is reconstructed in render
+// space as the flattened copy would be: triangle vertices and shading normals mapped first,
+// analytic shapes through the product transform; the ray and t are the render-space ones.
 LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRecord &hit, const Ray &ray) {
     SurfaceInteraction si;
     const Shape &shape = s.shapes[hit.shape];
+    const Instance *inst = hit.instance != NoIndex ? &s.instances[hit.instance] : nullptr;
     si.shape = hit.shape;
     si.primitive = hit.primitive;
     si.material = shape.material;
@@ -116,6 +120,11 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         uint32_t v[3];
         TriangleVertices(s, m, hit.primitive, v);
         Vec3f p0 = s.positions[v[0]], p1 = s.positions[v[1]], p2 = s.positions[v[2]];
+        if (inst) {
+            p0 = InstancePoint(inst->renderFromInstance, p0);
+            p1 = InstancePoint(inst->renderFromInstance, p1);
+            p2 = InstancePoint(inst->renderFromInstance, p2);
+        }
         Float b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
         si.p = p0 * b0 + p1 * b1 + p2 * b2;
         Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
@@ -134,13 +143,19 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         n = nl > 0 ? n / nl : Vec3f(0, 0, 1);
         if (std::abs(det) > 1e-9f) si.dpdu = (dp02 * duv12.y - dp12 * duv02.y) / det;
         else si.dpdu = dp02;
-        if (m.flipNormals) n = -n;
+        if (m.flipNormals != (inst && inst->swapsHandedness)) n = -n;
         si.n = n;
         si.ns = n;
         if (m.normalOffset != NoIndex) {
-            Vec3f ns = s.normals[m.normalOffset + (v[0] - m.firstVertex)] * b0 +
-                       s.normals[m.normalOffset + (v[1] - m.firstVertex)] * b1 +
-                       s.normals[m.normalOffset + (v[2] - m.firstVertex)] * b2;
+            Vec3f n0 = s.normals[m.normalOffset + (v[0] - m.firstVertex)];
+            Vec3f n1 = s.normals[m.normalOffset + (v[1] - m.firstVertex)];
+            Vec3f n2 = s.normals[m.normalOffset + (v[2] - m.firstVertex)];
+            if (inst) {
+                n0 = InstanceNormal(inst->instanceFromRender, n0);
+                n1 = InstanceNormal(inst->instanceFromRender, n1);
+                n2 = InstanceNormal(inst->instanceFromRender, n2);
+            }
+            Vec3f ns = n0 * b0 + n1 * b1 + n2 * b2;
             Float l2 = LengthSquared(ns);
             if (l2 > 0) {
                 ns = ns / std::sqrt(l2);
@@ -151,7 +166,8 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         break;
     }
     case ShapeKind::Sphere: {
-        const Sphere &sp = s.spheres[shape.index];
+        Sphere sp = s.spheres[shape.index];
+        if (inst) sp.renderFromObject = InstanceTransform(*inst) * sp.renderFromObject;
         Vec3f pRender = ray(hit.t);
         Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(pRender);
         pObj = pObj * (sp.radius / Length(pObj));  // reproject onto the surface
@@ -169,7 +185,8 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         break;
     }
     case ShapeKind::Disk: {
-        const Disk &dk = s.disks[shape.index];
+        Disk dk = s.disks[shape.index];
+        if (inst) dk.renderFromObject = InstanceTransform(*inst) * dk.renderFromObject;
         Vec3f pObj = dk.renderFromObject.Inverted().ApplyPoint(ray(hit.t));
         pObj.z = dk.height;
         si.p = dk.renderFromObject.ApplyPoint(pObj);

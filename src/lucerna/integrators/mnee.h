@@ -77,7 +77,7 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     // The solver needs positions to float precision of the ray, not of the barycentrics (which
     // carry the triangle's size into the error): intersect the triangle's plane once more.
     const Shape &shape = scene.shapes[hit.shape];
-    if (shape.kind == ShapeKind::Triangles) {
+    if (shape.kind == ShapeKind::Triangles && hit.instance == NoIndex) {
         uint32_t tv[3];
         TriangleVertices(scene, scene.triangleMeshes[shape.index], hit.primitive, tv);
         Vec3f p0 = scene.positions[tv[0]];
@@ -90,6 +90,9 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     }
     *siOut = si;
     if (si.material == NoIndex) return MneeSurfaceKind::None;
+    // Instanced shapes (object space geometry) are not chain vertices: the solver reads the
+    // render-space mesh (ShadingNormalDerivative); they block, as in every query of the walk.
+    if (hit.instance != NoIndex) return MneeSurfaceKind::Blocking;
     const Material &mat = ResolveMixMaterial(scene.materials[si.material], si, scene);   // a mix: its pick at si
     if (mat.kind != MaterialKind::Dielectric && mat.kind != MaterialKind::ThinDielectric) return MneeSurfaceKind::Blocking;
     // The solver uses the interpolated normal and one index per surface; a normal- or

@@ -1,5 +1,5 @@
 // Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, sphere, disk), their area
-// lights and flattened object instances, after pbrt-v4's shapes.cpp Create() functions,
+// lights and object instances (prototypes in object space plus instance records, or flattened), after pbrt-v4's shapes.cpp Create() functions,
 // TriangleMesh (util/mesh.cpp) and BasicScene::CreateLights / CreateAggregate (scene.cpp).
 #include <cmath>
 
@@ -449,21 +449,45 @@ void BuildShapes(BuildContext &ctx) {
         SetMedia(ctx, sh, firstShape);
     });
 
-    // ---- Object instances: flattened into render-space copies ----
+    // ---- Object instances ----
+    // Rule: an object used at least twice is kept once, in object space (a prototype), and each
+    // of its uses becomes an Instance record (104 bytes). Objects used once, and uses whose
+    // transformation is projective or singular, are flattened into render-space copies as before.
     ctx.scene.stats.instanceDefinitions = int(desc.instanceDefinitions.size());
+    std::vector<const InstanceDefinition *> defs(desc.objectNames.size(), nullptr);
+    for (size_t i = 0; i < desc.objectNames.size(); ++i) {
+        auto it = desc.instanceDefinitions.find(desc.objectNames[i]);
+        if (it != desc.instanceDefinitions.end()) defs[i] = &it->second;
+    }
+    auto instanceable = [&](const InstanceUse &use) {
+        if (use.projective != 0xffffffffu) return false;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j)
+                if (!std::isfinite(use.m[i][j]) || !std::isfinite(use.mInv[i][j])) return false;
+        return true;
+    };
+    std::vector<uint32_t> instanceableUses(defs.size(), 0);
+    for (const InstanceUse &use : desc.instances)
+        if (instanceable(use)) instanceableUses[use.object]++;
+    auto instanced = [&](const InstanceUse &use) { return instanceableUses[use.object] >= 2 && instanceable(use); };
+
+    // Flattened copies (render space), in file order.
     std::set<const ShapeEntity *> reported;
     for (const InstanceUse &use : desc.instances) {
-        auto it = desc.instanceDefinitions.find(use.name);
-        if (it == desc.instanceDefinitions.end()) Fail(use.loc, "object instance " + Quoted(use.name) + " is not defined");
+        const FileLoc useLoc = desc.Loc(use);
+        const std::string &name = desc.ObjectName(use);
+        if (!defs[use.object]) Fail(useLoc, "object instance " + Quoted(name) + " is not defined");
         ctx.scene.stats.instanceUses++;
-        for (const ShapeEntity &sh : it->second.shapes) ctx.Collect([&] {
+        if (instanced(use)) continue;
+        const Transform renderFromInstance = desc.RenderFromInstance(use);
+        for (const ShapeEntity &sh : defs[use.object]->shapes) ctx.Collect([&] {
             size_t firstShape = ctx.scene.shapes.size();
             Placement pl;
             pl.shape = &sh;
-            pl.renderFromObject = use.renderFromInstance * sh.renderFromObject;
+            pl.renderFromObject = renderFromInstance * sh.renderFromObject;
             pl.firstUse = reported.insert(&sh).second;
-            pl.where = " (object instance " + Quoted(use.name) + " used at " + use.loc.ToString() + ")";
-            CheckTransform(pl, use.loc);
+            pl.where = " (object instance " + Quoted(name) + " used at " + useLoc.ToString() + ")";
+            CheckTransform(pl, useLoc);
             pl.reverseOrientation = sh.reverseOrientation;
             // pbrt-v4 orients analytic shapes in instance space, then transforms the normal.
             pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
@@ -472,6 +496,76 @@ void BuildShapes(BuildContext &ctx) {
             BuildOne(ctx, pl, pl.firstUse);
             SetMedia(ctx, sh, firstShape);
         });
+    }
+
+    // Prototypes: after every render-space shape (TopLevelShapeCount), in object order.
+    HostScene &hs = ctx.scene;
+    std::vector<uint32_t> prototypeOf(defs.size(), NoIndex);
+    std::vector<uint64_t> prototypeTriangles;   // per prototype
+    for (size_t o = 0; o < defs.size(); ++o) {
+        if (instanceableUses[o] < 2 || !defs[o]) continue;
+        const Bounds3f sceneBounds = hs.bounds;
+        hs.bounds = Bounds3f();   // the shape builders expand it: here with object-space geometry
+        Prototype proto;
+        proto.firstShape = uint32_t(hs.shapes.size());
+        const uint64_t trianglesBefore = hs.stats.triangles;
+        for (const ShapeEntity &sh : defs[o]->shapes) ctx.Collect([&] {
+            size_t firstShape = hs.shapes.size();
+            Placement pl;
+            pl.shape = &sh;
+            pl.renderFromObject = sh.renderFromObject;
+            pl.firstUse = reported.insert(&sh).second;
+            pl.where = " (in object " + Quoted(defs[o]->name) + ")";
+            CheckTransform(pl, sh.loc);
+            pl.reverseOrientation = sh.reverseOrientation;
+            pl.analyticSwapsHandedness = sh.renderFromObject.SwapsHandedness();
+            pl.material = ResolveShapeMaterial(ctx, sh, nullptr);
+            BuildOne(ctx, pl, pl.firstUse);
+            SetMedia(ctx, sh, firstShape);
+        });
+        proto.shapeCount = uint32_t(hs.shapes.size()) - proto.firstShape;
+        proto.bounds = hs.bounds;
+        hs.bounds = sceneBounds;
+        prototypeTriangles.push_back(hs.stats.triangles - trianglesBefore);   // counted per instance below
+        hs.stats.triangles = trianglesBefore;
+        if (proto.shapeCount == 0) {   // everything dropped (warned): its uses render nothing
+            prototypeTriangles.pop_back();
+            continue;
+        }
+        prototypeOf[o] = uint32_t(hs.prototypes.size());
+        hs.prototypes.push_back(proto);
+    }
+    hs.stats.prototypes = int(hs.prototypes.size());
+
+    // Instances, in file order.
+    size_t count = 0;
+    for (const InstanceUse &use : desc.instances) count += instanced(use) && prototypeOf[use.object] != NoIndex;
+    hs.instances.reserve(count);
+    for (const InstanceUse &use : desc.instances) {
+        if (!instanced(use)) continue;
+        hs.stats.instancedUses++;
+        uint32_t p = prototypeOf[use.object];
+        if (p == NoIndex) continue;
+        Instance in;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j) {
+                in.renderFromInstance[i][j] = use.m[i][j];
+                in.instanceFromRender[i][j] = use.mInv[i][j];
+            }
+        in.prototype = p;
+        const Transform t = InstanceTransform(in);
+        in.swapsHandedness = t.SwapsHandedness() ? 1 : 0;
+        const Bounds3f &ob = hs.prototypes[p].bounds;
+        for (int c = 0; c < 8; ++c) {
+            Vec3f q = t.ApplyPoint(Vec3f(c & 1 ? ob.pMax.x : ob.pMin.x, c & 2 ? ob.pMax.y : ob.pMin.y,
+                                         c & 4 ? ob.pMax.z : ob.pMin.z));
+            if (!IsFinite(q.x) || !IsFinite(q.y) || !IsFinite(q.z))
+                Fail(desc.Loc(use), "the transformation of object instance " + Quoted(desc.ObjectName(use)) +
+                                        " sends it to infinity");
+            hs.bounds.Expand(q);
+        }
+        hs.instances.push_back(in);
+        hs.stats.triangles += prototypeTriangles[p];
     }
 }
 

@@ -18,14 +18,16 @@ namespace lu {
 
 // What `lucerna info` reports. Type names are pbrt-v4's ("trianglemesh", "conductor", ...).
 struct SceneStats {
-    std::map<std::string, int> shapesByType;     // Shape directives (instanced copies included)
+    std::map<std::string, int> shapesByType;     // Shape directives (flattened copies included, a prototype's once)
     std::map<std::string, int> lightsByType;     // LightSource types; "diffuse area" counts emitting primitives
     std::map<std::string, int> materialsByType;  // every Material / MakeNamedMaterial, "interface" included
     std::map<std::string, int> mediaByType;      // MakeNamedMedium types
-    uint64_t triangles = 0;                      // after flattening instances and triangulating
+    uint64_t triangles = 0;                      // rendered, after triangulating (each instance's counted)
     int areaLightShapes = 0;                     // shapes carrying an AreaLightSource
     int floatTextures = 0, spectrumTextures = 0;
     int instanceDefinitions = 0, instanceUses = 0;
+    int instancedUses = 0;                       // uses kept as instances (the rest are flattened copies)
+    int prototypes = 0;
     std::string cameraType = "perspective";
     double fov = 90;                             // degrees, on the shorter image axis (pbrt-v4)
     Vec3f cameraPosition, cameraDirection;       // render (= world) space
@@ -57,6 +59,8 @@ class HostScene {
     std::vector<Sphere> spheres;
     std::vector<Disk> disks;
     std::vector<Shape> shapes;
+    std::vector<Prototype> prototypes;   // object instancing (build_shapes.cpp says which uses are instanced)
+    std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Light> lights;
     std::vector<Float> lightCdf;

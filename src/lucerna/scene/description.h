@@ -5,6 +5,7 @@
 // Modeled on pbrt-v4's BasicScene entities.
 #pragma once
 
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -113,11 +114,19 @@ struct InstanceDefinition {
     std::vector<ShapeEntity> shapes;   // renderFromObject relative to the instance's world
 };
 
+// One ObjectInstance directive, kept small (116 bytes, not 200: scenes place millions of them): the object
+// by index, the file location as (file, line, col) and an affine render-from-instance transform
+// with its inverse as their top three rows. A transform whose bottom rows are not exactly
+// (0 0 0 1) lives in SceneDescription::projectiveInstanceTransforms. Read it through the
+// SceneDescription accessors below.
 struct InstanceUse {
-    std::string name;
-    FileLoc loc;
-    Transform renderFromInstance;
+    uint32_t object = 0;                 // index into SceneDescription::objectNames
+    uint32_t projective = 0xffffffffu;   // index into projectiveInstanceTransforms, or none
+    Float m[3][4], mInv[3][4];           // top rows of renderFromInstance and its inverse
+    uint32_t file = 0;                   // index into SceneDescription::instanceFiles
+    int32_t line = 0, col = 0;
 };
+static_assert(sizeof(InstanceUse) == 116, "InstanceUse: keep it small (docs/benchmarks.md, instancing)");
 
 struct SceneDescription {
     // Rendering options (pre-WorldBegin); name == "" when absent (defaults apply).
@@ -135,11 +144,19 @@ struct SceneDescription {
     std::vector<SceneEntity> areaLights;               // AreaLightSource entities
     std::vector<ShapeEntity> shapes;
     std::map<std::string, InstanceDefinition> instanceDefinitions;
-    std::vector<InstanceUse> instances;
+    // ObjectInstance uses in file order (a deque: no reallocation copies while millions arrive).
+    std::deque<InstanceUse> instances;
+    std::vector<std::string> objectNames;              // InstanceUse::object -> object name
+    std::vector<FileLoc> instanceFiles;                // InstanceUse::file -> its file (line, col 0)
+    std::vector<Transform> projectiveInstanceTransforms;
     std::vector<MediumEntity> media;                   // MakeNamedMedium, in file order
     std::string baseDirectory;                         // directory of the main file
     std::string filename;                              // the main file (whole-scene diagnostics)
     std::vector<std::string> inputFiles;               // every file read: the main file, then each Include/Import
+
+    const std::string &ObjectName(const InstanceUse &use) const { return objectNames[use.object]; }
+    FileLoc Loc(const InstanceUse &use) const;
+    Transform RenderFromInstance(const InstanceUse &use) const;
 };
 
 // Parses a pbrt-v4 scene file (following Include/Import). Throws SceneError on bad input.

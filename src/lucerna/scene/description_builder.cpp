@@ -497,10 +497,38 @@ void SceneDescriptionBuilder::ObjectInstance(const std::string &name, const File
     if (!activeInstance_.empty())
         throw SceneError(loc, "\"ObjectInstance\" inside the definition of object \"" + activeInstance_ + "\"");
     InstanceUse use;
-    use.name = name;
-    use.loc = loc;
-    use.renderFromInstance = CurrentTransform(loc, "ObjectInstance");
-    desc_.instances.push_back(std::move(use));
+    auto [it, added] = objectIds_.try_emplace(name, uint32_t(desc_.objectNames.size()));
+    if (added) {
+        desc_.objectNames.push_back(name);
+        objectFirstUse_.push_back(loc);
+    }
+    use.object = it->second;
+    // The file: the same as the previous use's almost always.
+    if (desc_.instanceFiles.empty() || desc_.instanceFiles.back().file != loc.file ||
+        desc_.instanceFiles.back().includedFrom != loc.includedFrom) {
+        FileLoc f = loc;
+        f.line = f.col = 0;
+        desc_.instanceFiles.push_back(std::move(f));
+    }
+    use.file = uint32_t(desc_.instanceFiles.size() - 1);
+    use.line = loc.line;
+    use.col = loc.col;
+    lu::Transform t = CurrentTransform(loc, "ObjectInstance");
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) {
+            use.m[i][j] = t.m.m[i][j];
+            use.mInv[i][j] = t.mInv.m[i][j];
+        }
+    bool affine = true;
+    for (int j = 0; j < 4; ++j) {
+        Float e = j == 3 ? 1 : 0;
+        affine = affine && t.m.m[3][j] == e && t.mInv.m[3][j] == e;
+    }
+    if (!affine) {
+        use.projective = uint32_t(desc_.projectiveInstanceTransforms.size());
+        desc_.projectiveInstanceTransforms.push_back(t);
+    }
+    desc_.instances.push_back(use);
 }
 
 // ---- files ----
@@ -535,10 +563,32 @@ void SceneDescriptionBuilder::EndOfFiles() {
     for (const auto &[name, loc] : namedMaterialUses_)
         if (!desc_.namedMaterials.count(name))
             throw SceneError(loc, "named material \"" + name + "\" is not defined (no MakeNamedMaterial \"" + name + "\")");
-    for (const InstanceUse &use : desc_.instances)
-        if (!desc_.instanceDefinitions.count(use.name))
-            throw SceneError(use.loc, "object \"" + use.name + "\" is not defined (no ObjectBegin \"" + use.name + "\")");
+    for (size_t i = 0; i < desc_.objectNames.size(); ++i) {
+        const std::string &name = desc_.objectNames[i];
+        if (!desc_.instanceDefinitions.count(name))
+            throw SceneError(objectFirstUse_[i], "object \"" + name + "\" is not defined (no ObjectBegin \"" + name + "\")");
+    }
     if (sawDirective_ && !inWorld_) diag_.Warning(FileLoc{}, "the scene has no WorldBegin");
+}
+
+// ---- the compact instance uses ----
+
+FileLoc SceneDescription::Loc(const InstanceUse &use) const {
+    FileLoc loc = use.file < instanceFiles.size() ? instanceFiles[use.file] : FileLoc{};
+    loc.line = use.line;
+    loc.col = use.col;
+    return loc;
+}
+
+Transform SceneDescription::RenderFromInstance(const InstanceUse &use) const {
+    if (use.projective != 0xffffffffu) return projectiveInstanceTransforms[use.projective];
+    Transform t;   // Matrix4() is the identity: its bottom rows stay (0 0 0 1)
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) {
+            t.m.m[i][j] = use.m[i][j];
+            t.mInv.m[i][j] = use.mInv[i][j];
+        }
+    return t;
 }
 
 // ---- the parser driving the builder ----

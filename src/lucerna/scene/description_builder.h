@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lucerna/scene/parser.h"
@@ -147,6 +148,8 @@ class SceneDescriptionBuilder final : public ParserTarget {
     bool inWorld_ = false, sawDirective_ = false;
     std::map<std::string, TransformPair> namedCoordinateSystems_;
     std::string activeInstance_;  // name of the ObjectBegin being defined, "" if none
+    std::unordered_map<std::string, uint32_t> objectIds_;  // ObjectInstance name -> InstanceUse::object
+    std::vector<FileLoc> objectFirstUse_;                  // per object id: its first ObjectInstance
     std::set<std::string> floatTextureNames_, spectrumTextureNames_, mediumNames_;
     std::vector<std::pair<std::string, FileLoc>> namedMaterialUses_;  // (name, NamedMaterial loc) per shape
     bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedTransformTimes_ = false,

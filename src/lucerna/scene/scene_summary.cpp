@@ -54,7 +54,10 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     o << "materials: " << Counts(st.materialsByType) << "\n";
     if (!st.mediaByType.empty()) o << "media: " << Counts(st.mediaByType) << "\n";
     o << "textures: " << st.floatTextures << " float, " << st.spectrumTextures << " spectrum\n";
-    o << "instances: " << st.instanceDefinitions << " definitions, " << st.instanceUses << " uses\n";
+    o << "instances: " << st.instanceDefinitions << " definitions, " << st.instanceUses << " uses";
+    if (st.instancedUses > 0)
+        o << " (" << st.instancedUses << " kept as instances of " << st.prototypes << " prototypes, the rest flattened)";
+    o << "\n";
     if (s.bounds.Empty()) o << "bounds: empty\n";
     else o << "bounds: " << Vec(s.bounds.pMin) << " - " << Vec(s.bounds.pMax) << "\n";
     o << "warnings: " << diag.warnings.size() << "\n";

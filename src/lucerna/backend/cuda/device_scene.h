@@ -28,6 +28,8 @@ class DeviceScene {
     DeviceBuffer<Sphere> spheres_;
     DeviceBuffer<Disk> disks_;
     DeviceBuffer<Shape> shapes_;
+    DeviceBuffer<Prototype> prototypes_;
+    DeviceBuffer<Instance> instances_;
     DeviceBuffer<Material> materials_;
     DeviceBuffer<Light> lights_;
     DeviceBuffer<Float> lightCdf_;
@@ -44,6 +46,7 @@ class DeviceScene {
     DeviceBuffer<Float> mediumData_;
     DeviceBuffer<BVHNode> nodes_;
     DeviceBuffer<PrimRef> prims_;
+    DeviceBuffer<int32_t> prototypeRoots_;
     SceneView view_;
     BVHView bvhView_;
     size_t bytes_ = 0;
