@@ -128,15 +128,8 @@ LU_HD bool MneeChainTransmittance(const SceneView &scene, const Tracer &tracer, 
             HitRecord hit;
             ++st.rays;
             bool found = tracer.Intersect(ray, &hit);
-            if (medium != NoIndex) {
-                tr->throughMedium = true;
-                Float len = Length(ray.d);
-                Ray ru;
-                ru.o = ray.o;
-                ru.d = ray.d / len;
-                SegmentTransmittance(scene, scene.media[medium], ru, (found ? hit.t : ray.tMax) * len, lambda, rng, tr);
-                if (tr->T.IsBlack()) return false;
-            }
+            if (medium != NoIndex && !RayTransmittance(scene, medium, ray, found ? hit.t : ray.tMax, lambda, rng, tr))
+                return false;
             if (!found) {
                 reached = true;
                 break;

@@ -140,6 +140,19 @@ LU_HD inline void SegmentTransmittance(const SceneView &scene, const Medium &m, 
     sU *= Tmaj / Tmaj[0];
 }
 
+// SegmentTransmittance of medium `medium` over ray parameters [0, t] of `ray` (any direction
+// length), marking tr as through a medium. False when the estimate is 0.
+LU_HD inline bool RayTransmittance(const SceneView &scene, uint32_t medium, const Ray &ray, Float t,
+                                   const SampledWavelengths &lambda, RNG &rng, ShadowTransmittance *tr) {
+    tr->throughMedium = true;
+    Float len = Length(ray.d);
+    Ray ru;
+    ru.o = ray.o;
+    ru.d = ray.d / len;
+    SegmentTransmittance(scene, scene.media[medium], ru, t * len, lambda, rng, tr);
+    return !tr->T.IsBlack();
+}
+
 // The transmittance along shadow ray `ray` (from SpawnShadowRay: towards the point ray.o + ray.d
 // up to ray.tMax, or along a unit direction to infinity) that starts in `medium`: interface
 // surfaces (no material) are crossed, changing the medium as pbrt-v4's MediumInterface says; any
@@ -154,16 +167,8 @@ LU_HD bool TraceTransmittance(const SceneView &scene, const Tracer &tracer, Ray 
         HitRecord hit;
         bool found = tracer.Intersect(ray, &hit);
         if (found && scene.shapes[hit.shape].material != NoIndex) return false;
-        if (medium != NoIndex) {
-            tr->throughMedium = true;
-            Float len = Length(ray.d);
-            Ray ru;
-            ru.o = ray.o;
-            ru.d = ray.d / len;
-            Float tEnd = (found ? hit.t : ray.tMax) * len;
-            SegmentTransmittance(scene, scene.media[medium], ru, tEnd, lambda, rng, tr);
-            if (tr->T.IsBlack()) return false;
-        }
+        if (medium != NoIndex && !RayTransmittance(scene, medium, ray, found ? hit.t : ray.tMax, lambda, rng, tr))
+            return false;
         if (!found) return true;
         // Cross the interface.
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
