@@ -25,6 +25,7 @@ struct SurfaceInteraction {
     uint32_t shape = 0xffffffffu, primitive = 0;
     uint32_t material = 0xffffffffu;  // NoIndex: interface
     uint32_t areaLight = 0xffffffffu; // light index of the emitting primitive, or NoIndex
+    uint32_t instance = 0xffffffffu;  // HitRecord::instance: the shape is a prototype's, seen through it
 };
 
 // pbrt-v4's shading-geometry partial derivatives at a hit (its SurfaceInteraction::shading

@@ -101,6 +101,22 @@ LU_INLINE void TriangleVertices(const SceneView &s, const TriangleMesh &m, uint3
     v[2] = m.firstVertex + idx[2];
 }
 
+// A triangle's vertex positions and (when the mesh has them) vertex normals in render space: a
+// prototype's through the instance it is seen in (normals by the inverse transpose), else as stored.
+LU_INLINE void TriangleRenderPositions(const SceneView &s, const uint32_t v[3], const Instance *inst, Vec3f p[3]) {
+    for (int i = 0; i < 3; ++i) p[i] = inst ? InstancePoint(inst->renderFromInstance, s.positions[v[i]]) : s.positions[v[i]];
+}
+LU_INLINE void TriangleRenderNormals(const SceneView &s, const TriangleMesh &m, const uint32_t v[3], const Instance *inst,
+                                     Vec3f n[3]) {
+    for (int i = 0; i < 3; ++i) {
+        n[i] = s.normals[m.normalOffset + (v[i] - m.firstVertex)];
+        if (inst) n[i] = InstanceNormal(inst->instanceFromRender, n[i]);
+    }
+}
+LU_INLINE const Instance *InstanceOf(const SceneView &s, uint32_t instance) {
+    return instance != NoIndex ? &s.instances[instance] : nullptr;
+}
+
 // Builds the SurfaceInteraction for a hit found by any backend. A hit on an instance's shape
 // (hit.instance set; the shape is a prototype's, in object space) is reconstructed in render
 // space as the flattened copy would be: triangle vertices and shading normals mapped first,
@@ -108,9 +124,10 @@ LU_INLINE void TriangleVertices(const SceneView &s, const TriangleMesh &m, uint3
 LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRecord &hit, const Ray &ray) {
     SurfaceInteraction si;
     const Shape &shape = s.shapes[hit.shape];
-    const Instance *inst = hit.instance != NoIndex ? &s.instances[hit.instance] : nullptr;
+    const Instance *inst = InstanceOf(s, hit.instance);
     si.shape = hit.shape;
     si.primitive = hit.primitive;
+    si.instance = hit.instance;
     si.material = shape.material;
     si.areaLight = shape.areaLight == NoIndex ? NoIndex : shape.areaLight + hit.primitive;
     si.wo = -Normalize(ray.d);
@@ -119,12 +136,9 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         const TriangleMesh &m = s.triangleMeshes[shape.index];
         uint32_t v[3];
         TriangleVertices(s, m, hit.primitive, v);
-        Vec3f p0 = s.positions[v[0]], p1 = s.positions[v[1]], p2 = s.positions[v[2]];
-        if (inst) {
-            p0 = InstancePoint(inst->renderFromInstance, p0);
-            p1 = InstancePoint(inst->renderFromInstance, p1);
-            p2 = InstancePoint(inst->renderFromInstance, p2);
-        }
+        Vec3f pv[3];
+        TriangleRenderPositions(s, v, inst, pv);
+        Vec3f p0 = pv[0], p1 = pv[1], p2 = pv[2];
         Float b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
         si.p = p0 * b0 + p1 * b1 + p2 * b2;
         Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
@@ -147,14 +161,9 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         si.n = n;
         si.ns = n;
         if (m.normalOffset != NoIndex) {
-            Vec3f n0 = s.normals[m.normalOffset + (v[0] - m.firstVertex)];
-            Vec3f n1 = s.normals[m.normalOffset + (v[1] - m.firstVertex)];
-            Vec3f n2 = s.normals[m.normalOffset + (v[2] - m.firstVertex)];
-            if (inst) {
-                n0 = InstanceNormal(inst->instanceFromRender, n0);
-                n1 = InstanceNormal(inst->instanceFromRender, n1);
-                n2 = InstanceNormal(inst->instanceFromRender, n2);
-            }
+            Vec3f nv[3];
+            TriangleRenderNormals(s, m, v, inst, nv);
+            Vec3f n0 = nv[0], n1 = nv[1], n2 = nv[2];
             Vec3f ns = n0 * b0 + n1 * b1 + n2 * b2;
             Float l2 = LengthSquared(ns);
             if (l2 > 0) {
@@ -213,8 +222,10 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
 LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord &hit, const SurfaceInteraction &si,
                                         const Vec3f &d) {
     const Shape &shape = scene.shapes[hit.shape];
+    const Instance *inst = InstanceOf(scene, hit.instance);
     if (shape.kind == ShapeKind::Sphere) {
-        const Sphere &sp = scene.spheres[shape.index];
+        Sphere sp = scene.spheres[shape.index];
+        if (inst) sp.renderFromObject = InstanceTransform(*inst) * sp.renderFromObject;
         Float R = sp.radius * Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
         Vec3f dn = d / R;
         return sp.flipNormals ? -dn : dn;
@@ -224,10 +235,11 @@ LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord 
     if (m.normalOffset == NoIndex) return Vec3f(0, 0, 0);
     uint32_t v[3];
     TriangleVertices(scene, m, hit.primitive, v);
-    Vec3f e1 = scene.positions[v[1]] - scene.positions[v[0]], e2 = scene.positions[v[2]] - scene.positions[v[0]];
-    Vec3f n0 = scene.normals[m.normalOffset + (v[0] - m.firstVertex)];
-    Vec3f n1 = scene.normals[m.normalOffset + (v[1] - m.firstVertex)];
-    Vec3f n2 = scene.normals[m.normalOffset + (v[2] - m.firstVertex)];
+    Vec3f pv[3], nv[3];
+    TriangleRenderPositions(scene, v, inst, pv);
+    TriangleRenderNormals(scene, m, v, inst, nv);
+    Vec3f e1 = pv[1] - pv[0], e2 = pv[2] - pv[0];
+    Vec3f n0 = nv[0], n1 = nv[1], n2 = nv[2];
     // d = db1 e1 + db2 e2 (d lies in the triangle's plane): normal equations.
     Float g11 = Dot(e1, e1), g12 = Dot(e1, e2), g22 = Dot(e2, e2), det = g11 * g22 - g12 * g12;
     if (!(std::abs(det) > 0)) return Vec3f(0, 0, 0);
@@ -259,15 +271,19 @@ LU_INLINE void TriangleBarycentrics(const Vec3f &p0, const Vec3f &p1, const Vec3
 LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const SurfaceInteraction &si) {
     ShadingDerivatives d;
     const Shape &shape = s.shapes[si.shape];
+    const Instance *inst = InstanceOf(s, si.instance);
     HitRecord hit;
     hit.shape = si.shape;
     hit.primitive = si.primitive;
+    hit.instance = si.instance;
     switch (shape.kind) {
     case ShapeKind::Triangles: {
         const TriangleMesh &m = s.triangleMeshes[shape.index];
         uint32_t v[3];
         TriangleVertices(s, m, si.primitive, v);
-        Vec3f p0 = s.positions[v[0]], p1 = s.positions[v[1]], p2 = s.positions[v[2]];
+        Vec3f pv[3];
+        TriangleRenderPositions(s, v, inst, pv);
+        Vec3f p0 = pv[0], p1 = pv[1], p2 = pv[2];
         Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
         if (m.uvOffset != NoIndex) {
             uv0 = s.uvs[m.uvOffset + (v[0] - m.firstVertex)];
@@ -302,7 +318,8 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         return d;
     }
     case ShapeKind::Sphere: {
-        const Sphere &sp = s.spheres[shape.index];
+        Sphere sp = s.spheres[shape.index];
+        if (inst) sp.renderFromObject = InstanceTransform(*inst) * sp.renderFromObject;
         Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(si.p);
         Float r = sp.radius, zRadius = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
         Float cosPhi = zRadius > 0 ? pObj.x / zRadius : 1, sinPhi = zRadius > 0 ? pObj.y / zRadius : 0;
@@ -318,7 +335,8 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         return d;
     }
     case ShapeKind::Disk: {
-        const Disk &dk = s.disks[shape.index];
+        Disk dk = s.disks[shape.index];
+        if (inst) dk.renderFromObject = InstanceTransform(*inst) * dk.renderFromObject;
         Vec3f pObj = dk.renderFromObject.Inverted().ApplyPoint(si.p);
         Float rHit = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
         Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
