@@ -51,8 +51,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             if (!s.materialName.empty() && !d.namedMaterials.count(s.materialName)) std::abort();
             Exercise(s.params);
         }
-        for (const InstanceUse &u : d.instances)
-            if (!d.instanceDefinitions.count(u.name)) std::abort();
+        for (const InstanceUse &u : d.instances) {
+            if (u.object >= d.objectNames.size() || u.file >= d.instanceFiles.size()) std::abort();
+            if (u.projective != 0xffffffffu && u.projective >= d.projectiveInstanceTransforms.size())
+                std::abort();
+            if (!d.instanceDefinitions.count(d.ObjectName(u))) std::abort();
+        }
         for (const auto &l : d.lights) Exercise(l.params);
         for (const auto &m : d.materials) Exercise(m.params);
         for (const auto &[name, m] : d.namedMaterials) Exercise(m.params);
