@@ -62,6 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     options.maxTotalValues = size_t(1) << 18;
     BuildOptions build;
     build.resX = build.resY = 16;
+    build.maxSubdivisionTriangles = uint64_t(1) << 16;   // loopsubdiv "levels" amplify the input 4^levels times
     try {
         SceneDescription d = ParseSceneString(text, "fuzz.pbrt", diag, options);
         std::unique_ptr<HostScene> scene = BuildScene(d, diag, build);

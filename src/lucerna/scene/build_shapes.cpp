@@ -1,9 +1,10 @@
-// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, sphere, disk), their area
+// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk), their area
 // lights and object instances (prototypes in object space plus instance records, or flattened), after pbrt-v4's shapes.cpp Create() functions,
 // TriangleMesh (util/mesh.cpp) and BasicScene::CreateLights / CreateAggregate (scene.cpp).
 #include <cmath>
 
 #include "lucerna/scene/build_internal.h"
+#include "lucerna/scene/loop_subdivision.h"
 #include "lucerna/scene/ply.h"
 
 namespace lu::build {
@@ -400,6 +401,35 @@ void SetMedia(BuildContext &ctx, const ShapeEntity &sh, size_t firstShape) {
     }
 }
 
+// pbrt-v4's "loopsubdiv": the control mesh refined "levels" times and moved to the limit surface
+// (scene/loop_subdivision.h), then rendered as a triangle mesh with the limit normals.
+void BuildLoopSubdiv(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    int levels = p.GetOneInt("levels", 3);
+    MeshData control;
+    control.indices = ToIndices(ctx, sh, p.GetIntArray("indices"));
+    control.P = p.GetPoint3fArray("P");
+    CheckMesh(ctx, sh, control, "loopsubdiv");
+    const uint64_t maxTriangles = ctx.opts.maxSubdivisionTriangles;
+    uint64_t triangles = LoopSubdividedTriangleCount(control.indices.size() / 3, levels);
+    if (triangles > maxTriangles)
+        Fail(ParamLoc(p, "levels", sh.loc), "loopsubdiv: " + std::to_string(levels) + " levels would make " +
+                                                (triangles == UINT64_MAX ? std::string("more than 2^64") : std::to_string(triangles)) +
+                                                " triangles (at most " + std::to_string(maxTriangles) + "); use fewer \"levels\"");
+    LoopSubdivisionMesh sub;
+    std::string error;
+    if (!LoopSubdivide(control.P, control.indices, levels, &sub, &error)) Fail(sh.loc, "loopsubdiv: " + error);
+    if (sub.droppedFaces > 0)
+        ctx.diag.Warning(sh.loc, "loopsubdiv: " + std::to_string(sub.droppedFaces) +
+                                     " faces that repeat a vertex are left out of the control mesh");
+    MeshData m;
+    m.P = std::move(sub.P);
+    m.N = std::move(sub.N);
+    m.indices = std::move(sub.indices);
+    AddTriangles(ctx, pl, m);
+}
+
 // Builds one Shape directive at its placement; returns false for unknown names (reported by caller).
 void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
     const ShapeEntity &sh = *pl.shape;
@@ -413,7 +443,8 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
     else if (name == "bilinearmesh") BuildBilinearMesh(ctx, pl);
     else if (name == "sphere") BuildSphere(ctx, pl);
     else if (name == "disk") BuildDisk(ctx, pl);
-    else if (name == "cylinder" || name == "curve" || name == "loopsubdiv")
+    else if (name == "loopsubdiv") BuildLoopSubdiv(ctx, pl);
+    else if (name == "cylinder" || name == "curve")
         FailUnsupported(sh.loc, "Shape " + Quoted(name));
     else
         Fail(sh.loc, "unknown shape type " + Quoted(name));

@@ -92,6 +92,9 @@ class HostScene {
 
 struct BuildOptions {
     int resX = 0, resY = 0;   // --res override; 0: from the Film directive
+    // The most triangles one "loopsubdiv" shape may refine into (about 40 bytes of scene each:
+    // the default is some 2.7 GB); more is an error naming "levels".
+    uint64_t maxSubdivisionTriangles = uint64_t(1) << 26;
 };
 
 // Throws SceneError (at the offending entity or parameter) for bad input and for unsupported
