@@ -1,7 +1,8 @@
 // Lucerna: the implicit technique for collimated beams (lights/collimated.h): a ray that crosses a
 // beam's disc from its front, within the pass's cone around the beam direction, collects the
 // regularized radiance E K / cos, MIS-weighted against the explicit technique (SampleBeamLi in
-// next-event estimation). The discs are not geometry: rays pass through them.
+// next-event estimation, a mixture of cone and disc-area sampling). The discs are not geometry:
+// rays pass through them.
 #pragma once
 
 #include "lucerna/integrators/techniques.h"
@@ -29,16 +30,17 @@ LU_INLINE uint32_t NearestBeamCrossing(const SceneView &scene, const Ray &ray, F
     return found;
 }
 
-// MIS weight of the beam `li` reached along wi (unit) from vertex v, against next-event estimation
-// at v, which samples the same direction with pdfW = LightPMF * K (both in solid angle at v). No
+// MIS weight of the beam `li` reached along wi (unit) from vertex v, crossing its disc at y at
+// distance t, against next-event estimation at v, which samples the same direction with pdfW =
+// LightPMF * the mixture of its two techniques (BeamMixturePdfW; both in solid angle at v). No
 // explicit technique reaches the beam from the camera or through a Dirac lobe: weight 1 there.
 // r: the path's per-wavelength probabilities when it went through a medium (as EmitterHitWeight).
-LU_INLINE Float BeamHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi,
+LU_INLINE Float BeamHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f y, Float t,
                               const PathSettings &ps, const WavelengthPdfs *r, const SampledWavelengths &lambda) {
     bool explicitExists = !v.camera && !v.specular;
     if (!explicitExists || ps.strategy == LightStrategy::BSDFOnly) return r ? WavelengthWeight(r->u, 1, r->l, 0, lambda) : 1;
     if (ps.strategy == LightStrategy::NEEOnly) return 0;
-    Float pdfLightW = LightPMF(scene, li) * BeamKernel(scene.lights[li], -wi, BeamOneMinusCos(ps.reg));
+    Float pdfLightW = LightPMF(scene, li) * BeamMixturePdfW(scene.lights[li], y, t, -wi, BeamOneMinusCos(ps.reg));
     if (!r) return BSDFHitWeight(ps.strategy, v.pdfBsdfW, pdfLightW);
     return BSDFHitWeight(ps.strategy, v.pdfBsdfW, r->l[0] * pdfLightW) *
            WavelengthWeight(r->u, v.pdfBsdfW, r->l, pdfLightW, lambda);
@@ -50,7 +52,8 @@ LU_INLINE SampledSpectrum BeamHitLe(const ScatterVertex &v, const SceneView &sce
     Vec3f wi = Normalize(ray.d);
     SampledSpectrum Le = BeamRadiance(scene.lights[li], scene, y, -wi, BeamOneMinusCos(ps.reg), lambda);
     if (Le.IsBlack()) return Le;
-    return Le * BeamHitWeight(v, scene, li, wi, ps, r, lambda);
+    // The distance from the vertex (the ray may start where it crossed another beam).
+    return Le * BeamHitWeight(v, scene, li, wi, y, Distance(v.ctx.p, y), ps, r, lambda);
 }
 
 }  // namespace lu
