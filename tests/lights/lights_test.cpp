@@ -489,11 +489,12 @@ TEST(DiskLight, SamplingMatchesPdfAndIrradiance) {
 
 // ---- Partial spheres, disk sectors and cylinders ----
 
-// The 8 corners of an object-space box seen through t (for CapFor).
-std::initializer_list<Vec3f> BoxCorners(const Transform &t, Vec3f lo, Vec3f hi, Vec3f out[8]) {
+// CapFor over the 8 corners of the object-space box [lo, hi] seen through t.
+Float CapForBox(Vec3f p, Vec3f axis, const Transform &t, Vec3f lo, Vec3f hi) {
+    Float cap = 1;
     for (int i = 0; i < 8; ++i)
-        out[i] = t.ApplyPoint(Vec3f((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z));
-    return {out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7]};
+        cap = Min(cap, CapFor(p, axis, {t.ApplyPoint(Vec3f((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z))}));
+    return cap;
 }
 
 TEST(PartialSphereLight, SamplingMatchesPdfOutsideAndInside) {
@@ -580,9 +581,8 @@ TEST(CylinderLight, SamplingMatchesPdfOutsideAndInside) {
         uint32_t li = ts.AddAreaLight(ts.AddCylinder(t, 0.5f, -0.8f, 0.8f, phimax), 2);
         SceneView s = ts.View();
         LightSampleContext ctx{{0.1f, 0.05f, 0}, {0, 0, 1}, {0, 0, 1}};
-        Vec3f corners[8];
         Vec3f axis = Normalize(Vec3f(0, 0, 3) - ctx.p);
-        Float cosCap = CapFor(ctx.p, axis, BoxCorners(t, {-0.5f, -0.5f, -0.8f}, {0.5f, 0.5f, 0.8f}, corners));
+        Float cosCap = CapForBox(ctx.p, axis, t, {-0.5f, -0.5f, -0.8f}, {0.5f, 0.5f, 0.8f});
         SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap, false, 100000, 20, 24, nullptr, 0.02, true);
         EXPECT_TRUE(test::Chi2Accepts(r.chi2));
         EXPECT_EQ(r.pdfMismatches, 0);
