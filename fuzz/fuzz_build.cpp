@@ -28,6 +28,7 @@ void CheckScene(const HostScene &s) {
         if (sh.kind == ShapeKind::Triangles) Check(sh.index < v.triangleMeshes.size);
         if (sh.kind == ShapeKind::Sphere) Check(sh.index < v.spheres.size);
         if (sh.kind == ShapeKind::Disk) Check(sh.index < v.disks.size);
+        if (sh.kind == ShapeKind::Cylinder) Check(sh.index < v.cylinders.size);
         Check(sh.areaLight == NoIndex || uint64_t(sh.areaLight) + sh.primitiveCount <= v.lights.size);
     }
     for (uint32_t m = 0; m < v.triangleMeshes.size; ++m) {

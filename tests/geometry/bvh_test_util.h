@@ -71,10 +71,13 @@ struct OwnedScene : HostScene {
         triangleMeshes.push_back(m);
         shapes.push_back(s);
     }
-    void AddSphere(const Transform &renderFromObject, Float radius) {
+    // A partial sphere when zmin > -radius, zmax < radius or phimax (degrees) < 360.
+    void AddSphere(const Transform &renderFromObject, Float radius, Float zmin = -Infinity, Float zmax = Infinity,
+                   Float phimax = 360) {
         Sphere sp;
         sp.renderFromObject = renderFromObject;
         sp.radius = radius;
+        SetSphereClip(sp, zmin, zmax, phimax);
         Shape s;
         s.kind = ShapeKind::Sphere;
         s.index = uint32_t(spheres.size());
@@ -82,11 +85,19 @@ struct OwnedScene : HostScene {
         shapes.push_back(s);
         bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
     }
-    void AddDisk(const Transform &renderFromObject, Float height, Float radius, Float innerRadius) {
+    void AddDisk(const Transform &renderFromObject, Float height, Float radius, Float innerRadius, Float phimax = 360) {
         Shape s;
         s.kind = ShapeKind::Disk;
         s.index = uint32_t(disks.size());
-        disks.push_back(Disk{renderFromObject, height, radius, innerRadius});
+        disks.push_back(Disk{renderFromObject, height, radius, innerRadius, PhiMaxRadians(phimax)});
+        shapes.push_back(s);
+        bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
+    }
+    void AddCylinder(const Transform &renderFromObject, Float radius, Float zmin, Float zmax, Float phimax = 360) {
+        Shape s;
+        s.kind = ShapeKind::Cylinder;
+        s.index = uint32_t(cylinders.size());
+        cylinders.push_back(Cylinder{renderFromObject, radius, zmin, zmax, PhiMaxRadians(phimax)});
         shapes.push_back(s);
         bounds.Expand(PrimitiveBounds(View(), uint32_t(shapes.size() - 1), 0));
     }
@@ -163,8 +174,14 @@ inline void AddSlivers(OwnedScene &s, int count, uint64_t seed) {
     s.AddMesh(p, idx);
 }
 
-// Spheres and disks with rotations, non-uniform scales and an annulus.
+// Spheres, disks and cylinders with rotations, non-uniform scales, an annulus and partial ones
+// (cut spheres, a disk sector, a cylinder cut in phi).
 inline void AddAnalyticShapes(OwnedScene &s) {
+    s.AddSphere(Translate(Vec3f(0.25f, 0.7f, 0.75f)) * Rotate(40, Vec3f(1, 0, 1)), 0.1f, -0.04f, 0.08f, 250);
+    s.AddSphere(Translate(Vec3f(0.8f, 0.25f, 0.3f)), 0.09f, -0.09f, 0.02f);
+    s.AddDisk(Translate(Vec3f(0.75f, 0.8f, 0.35f)) * Rotate(-35, Vec3f(1, 0.2f, 0)), 0.02f, 0.12f, 0.03f, 200);
+    s.AddCylinder(Translate(Vec3f(0.4f, 0.25f, 0.6f)) * Rotate(70, Vec3f(0.3f, 1, 0)), 0.07f, -0.15f, 0.1f);
+    s.AddCylinder(Translate(Vec3f(0.6f, 0.4f, 0.15f)) * Rotate(20, Vec3f(1, 0, 0)) * Scale(1, 1.5f, 1), 0.1f, 0, 0.12f, 290);
     s.AddSphere(Translate(Vec3f(0.3f, 0.3f, 0.4f)), 0.12f);
     s.AddSphere(Translate(Vec3f(0.7f, 0.6f, 0.5f)) * Rotate(30, Vec3f(1, 1, 0)) * Scale(1, 0.5f, 2), 0.08f);
     s.AddSphere(Translate(Vec3f(0.5f, 0.8f, 0.2f)), 0.03f);
@@ -282,10 +299,8 @@ inline Float PrimitiveDistance(const SceneView &scene, uint32_t shapeId, uint32_
         TriangleVertices(scene, scene.triangleMeshes[shape.index], prim, v);
         hit = IntersectTriangle(scene.positions[v[0]], scene.positions[v[1]], scene.positions[v[2]], ray, Infinity, &t,
                                 &b1, &b2);
-    } else if (shape.kind == ShapeKind::Sphere) {
-        hit = IntersectSphere(scene.spheres[shape.index], ray, Infinity, &t);
     } else {
-        hit = IntersectDisk(scene.disks[shape.index], ray, Infinity, &t);
+        hit = IntersectQuadric(scene, shape, ray, Infinity, &t);
     }
     return hit ? t : Infinity;
 }

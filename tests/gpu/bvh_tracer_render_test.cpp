@@ -94,6 +94,51 @@ TEST(BVHTracerRender, BlockMeansMatchEmbree) {
     }
 }
 
+// pbrt-v4's cylinder and partial spheres and disks (scenes/features/shapes-quadrics.pbrt: every
+// shape analytic, so Embree's user geometry and the shared BVH run the same intersection code):
+// the same seed gives the same image, independent seeds agree block by block.
+TEST(BVHTracerRender, QuadricsSceneMatchesEmbree) {
+    Diagnostics diag;
+    diag.quiet = true;
+    BuildOptions opts;
+    opts.resX = 64;
+    opts.resY = 40;
+    auto scene = LoadScene(std::string(LUCERNA_SOURCE_DIR) + "/scenes/features/shapes-quadrics.pbrt", diag, opts);
+    ASSERT_TRUE(scene);
+    ASSERT_TRUE(diag.unsupported.empty());
+    ASSERT_EQ(scene->cylinders.size(), 2u);
+    RenderSettings job = test::SettingsFor(*scene, "path", 2, 7);
+    FilmAccumulator embree;
+    RenderCPU(*scene, job, embree);
+    RenderStats sb;
+    FilmAccumulator ours = RenderWithBVHTracer(*scene, job, &sb);
+    size_t same = 0, n = size_t(opts.resX) * opts.resY;
+    for (size_t i = 0; i < n; ++i) {
+        bool eq = true;
+        for (int k = 0; k < 4; ++k) eq &= std::abs(embree.xyzw[4 * i + k] - ours.xyzw[4 * i + k]) <= 1e-5 * (std::abs(embree.xyzw[4 * i + k]) + 1e-6);
+        same += eq;
+    }
+    std::printf("[ same seed ] shapes-quadrics: %.2f%% of pixels equal\n", 100.0 * same / n);
+    EXPECT_GE(double(same) / n, 0.99);
+    const int block = 8, seeds = 4;
+    int tests = (opts.resX / block) * (opts.resY / block) * 3;
+    double z = test::TwoSidedZ(test::SidakP(1e-3, tests));
+    std::vector<Image> a, b;
+    for (int s = 0; s < seeds; ++s) {
+        RenderSettings j = test::SettingsFor(*scene, "path", 16, 500 + s);
+        FilmAccumulator fa;
+        RenderCPU(*scene, j, fa);
+        a.push_back(fa.Resolve(scene->View().film));
+        j.seed = 600 + s;
+        RenderStats st;
+        b.push_back(RenderWithBVHTracer(*scene, j, &st).Resolve(scene->View().film));
+        EXPECT_TRUE(test::AllFinite(b.back()));
+    }
+    test::BlockComparison r = test::CompareBlockMeans(a, b, block, z);
+    std::printf("[ blocks    ] shapes-quadrics: %s (threshold %.2f)\n", r.Summary().c_str(), z);
+    EXPECT_EQ(r.failures, 0) << r.Summary();
+}
+
 // The comparison can fail: a 10% brighter image is caught at the same sample counts.
 TEST(BVHTracerRender, BlockComparisonDetectsABias) {
     auto scene = test::LoadSharedSceneAt(SceneOf({"cornell-box", "path", 0}), kRes);

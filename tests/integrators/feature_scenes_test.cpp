@@ -1,6 +1,7 @@
-// The sampler and camera feature scenes (scenes/features/samplers-*.pbrt, cameras-*.pbrt) build
-// with nothing unsupported and no warnings and render finite, non-black images; a spherical or
-// orthographic camera under a uniform white sky sees the sky's radiance in every pixel.
+// The sampler, camera and shape feature scenes (scenes/features/samplers-*.pbrt, cameras-*.pbrt,
+// shapes-*.pbrt) build with nothing unsupported and no warnings and render finite, non-black
+// images; a spherical or orthographic camera under a uniform white sky sees the sky's radiance in
+// every pixel.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,13 +13,13 @@
 namespace lu::test {
 namespace {
 
-std::vector<std::string> FeatureScenes() { return FeatureSceneFiles({"samplers-", "cameras-"}); }
+std::vector<std::string> FeatureScenes() { return FeatureSceneFiles({"samplers-", "cameras-", "shapes-"}); }
 
 }  // namespace
 
 TEST(FeatureScenes, SamplersAndCamerasBuildCleanAndRender) {
     std::vector<std::string> files = FeatureScenes();
-    ASSERT_EQ(files.size(), 5u);
+    ASSERT_EQ(files.size(), 6u);
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 32, 32);   // the equal-area scene is square; forcing 32x32 keeps it so

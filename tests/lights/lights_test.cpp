@@ -68,10 +68,12 @@ struct TestScene : HostScene {
         shapes.push_back(s);
         return uint32_t(shapes.size() - 1);
     }
-    uint32_t AddSphere(const Transform &t, Float r) {
+    // A partial sphere when zmin > -r, zmax < r or phimax (degrees) < 360.
+    uint32_t AddSphere(const Transform &t, Float r, Float zmin = -Infinity, Float zmax = Infinity, Float phimax = 360) {
         Sphere sp;
         sp.renderFromObject = t;
         sp.radius = r;
+        SetSphereClip(sp, zmin, zmax, phimax);
         spheres.push_back(sp);
         Shape s;
         s.kind = ShapeKind::Sphere;
@@ -79,16 +81,25 @@ struct TestScene : HostScene {
         shapes.push_back(s);
         return uint32_t(shapes.size() - 1);
     }
-    uint32_t AddDisk(const Transform &t, Float r, Float h = 0, Float ri = 0) {
+    uint32_t AddDisk(const Transform &t, Float r, Float h = 0, Float ri = 0, Float phimax = 360) {
         Disk d;
         d.renderFromObject = t;
         d.radius = r;
         d.height = h;
         d.innerRadius = ri;
+        d.phiMax = PhiMaxRadians(phimax);
         disks.push_back(d);
         Shape s;
         s.kind = ShapeKind::Disk;
         s.index = uint32_t(disks.size() - 1);
+        shapes.push_back(s);
+        return uint32_t(shapes.size() - 1);
+    }
+    uint32_t AddCylinder(const Transform &t, Float r, Float zmin, Float zmax, Float phimax = 360, bool flip = false) {
+        cylinders.push_back(Cylinder{t, r, zmin, zmax, PhiMaxRadians(phimax), flip});
+        Shape s;
+        s.kind = ShapeKind::Cylinder;
+        s.index = uint32_t(cylinders.size() - 1);
         shapes.push_back(s);
         return uint32_t(shapes.size() - 1);
     }
@@ -140,8 +151,7 @@ bool HitShape(const SceneView &s, uint32_t shapeIndex, const Ray &ray, SurfaceIn
         hit.b2 = b2;
         break;
     }
-    case ShapeKind::Sphere: found = IntersectSphere(s.spheres[shape.index], ray, Infinity, &t); break;
-    case ShapeKind::Disk: found = IntersectDisk(s.disks[shape.index], ray, Infinity, &t); break;
+    default: found = IntersectQuadric(s, shape, ray, Infinity, &t); break;
     }
     if (!found) return false;
     hit.t = t;
@@ -171,9 +181,12 @@ struct SamplingCheck {
 // {w : dot(w, axis) >= cosCap} (nT x nP cells of equal solid angle); directions outside the cap
 // reject. Samples SampleLi refuses are set aside and counted (chi2.failed): PDF_Li covers
 // directions where a sample may still be refused. pdfOverride replaces PDF_Li (negative tests).
+// failuresInHistogram: refused samples count in a cell expecting 1 - (integral of PDF_Li), for
+// lights whose PDF_Li does not integrate to 1 (a one-sided cylinder seen from outside).
 SamplingCheck CheckSampling(const SceneView &s, uint32_t li, const LightSampleContext &ctx, Vec3f axis, Float cosCap,
                             bool incomplete = false, int N = 100000, int nT = 20, int nP = 24,
-                            const std::function<Float(Vec3f)> &pdfOverride = nullptr, double integralTol = 0.02) {
+                            const std::function<Float(Vec3f)> &pdfOverride = nullptr, double integralTol = 0.02,
+                            bool failuresInHistogram = false) {
     SamplingCheck r;
     std::mt19937 rng(1234 + li);
     std::uniform_real_distribution<float> U(0, 1);
@@ -195,7 +208,7 @@ SamplingCheck CheckSampling(const SceneView &s, uint32_t li, const LightSampleCo
     };
     test::Chi2Options opts;
     opts.samples = N;
-    opts.failuresInHistogram = false;
+    opts.failuresInHistogram = failuresInHistogram;
     opts.integralTolerance = integralTol;
     r.chi2 = test::Chi2SampleTest(test::CapDomain({axis.x, axis.y, axis.z}, cosCap, nT, nP), sample, pdf, opts);
     return r;
@@ -472,6 +485,178 @@ TEST(DiskLight, SamplingMatchesPdfAndIrradiance) {
     Vec3f axis2 = Normalize(Vec3f(0.2f, 0, 2) - ctx2.p);
     Float cap2 = CapFor(ctx2.p, axis2, {Vec3f(1.0f, 0, 2), Vec3f(-0.6f, 0, 2), Vec3f(0.2f, 0.8f, 2), Vec3f(0.2f, -0.8f, 2)});
     ExpectGood(CheckSampling(s, li, ctx2, axis2, cap2 - 0.01f), 0.02);
+}
+
+// ---- Partial spheres, disk sectors and cylinders ----
+
+// CapFor over the 8 corners of the object-space box [lo, hi] seen through t.
+Float CapForBox(Vec3f p, Vec3f axis, const Transform &t, Vec3f lo, Vec3f hi) {
+    Float cap = 1;
+    for (int i = 0; i < 8; ++i)
+        cap = Min(cap, CapFor(p, axis, {t.ApplyPoint(Vec3f((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z))}));
+    return cap;
+}
+
+TEST(PartialSphereLight, SamplingMatchesPdfOutsideAndInside) {
+    {
+        // Outside: the cone of the whole sphere is sampled and directions that miss what is left
+        // of it fail (counted against 1 - integral of the pdf); through the cut, the far side.
+        SCOPED_TRACE("outside");
+        TestScene ts;
+        Vec3f center(0.3f, 0.2f, 3);
+        uint32_t li = ts.AddAreaLight(ts.AddSphere(Translate(center) * Rotate(50, Vec3f(1, 0, 0)), 1, -0.4f, 0.6f, 270), 1, true);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+        Vec3f axis = Normalize(center);
+        Float cosCap = 1 - 1.25f * (1 - std::sqrt(1 - 1 / LengthSquared(center)));
+        SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap, false, 100000, 20, 24, nullptr, 0.02, true);
+        EXPECT_TRUE(test::Chi2Accepts(r.chi2));
+        EXPECT_EQ(r.pdfMismatches, 0);
+        EXPECT_GT(r.chi2.failed, 5000);   // the cuts matter
+        EXPECT_LT(r.chi2.pdfIntegral, 0.95);
+    }
+    {
+        SCOPED_TRACE("inside");
+        TestScene ts;
+        uint32_t li = ts.AddAreaLight(ts.AddSphere(Translate({0.2f, -0.3f, 0.1f}) * Rotate(30, Vec3f(0, 1, 1)), 1, -0.7f, 0.8f, 300), 1, true);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        SamplingCheck r = CheckSampling(s, li, ctx, Vec3f(0, 0, 1), -1);
+        ExpectGood(r, 0.02);
+        EXPECT_EQ(r.chi2.failed, 0);
+    }
+}
+
+// pbrt-v4's own partial-sphere sampling (the whole sphere's cone, cut-away points returned as
+// they are) does not have the density PDF_Li gives: the check sees it.
+TEST(PartialSphereLight, ChiSquareRejectsSamplingTheWholeSphere) {
+    TestScene ts;
+    Vec3f center(0.3f, 0.2f, 3);
+    Transform t = Translate(center) * Rotate(50, Vec3f(1, 0, 0));
+    uint32_t partial = ts.AddAreaLight(ts.AddSphere(t, 1, -0.4f, 0.6f, 270), 1, true);
+    uint32_t whole = ts.AddAreaLight(ts.AddSphere(t, 1), 1, true);
+    SceneView s = ts.View();
+    LightSampleContext ctx{{0, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+    Vec3f axis = Normalize(center);
+    Float cosCap = 1 - 1.25f * (1 - std::sqrt(1 - 1 / LengthSquared(center)));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> U(0, 1);
+    SampledWavelengths lambda = TestLambda();
+    auto sample = [&](test::Chi2Point *p) {
+        LightLiSample ls;
+        if (!SampleLi(s.lights[whole], s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls)) return false;
+        *p = {ls.wi.x, ls.wi.y, ls.wi.z};
+        return true;
+    };
+    auto pdf = [&](const test::Chi2Point &p) {
+        return double(DirectionPDF(s, partial, ctx, Vec3f(Float(p.x), Float(p.y), Float(p.z)), false));
+    };
+    test::Chi2Result r = test::Chi2SampleTest(test::CapDomain({axis.x, axis.y, axis.z}, cosCap, 20, 24), sample, pdf);
+    EXPECT_TRUE(test::Chi2Rejects(r));
+}
+
+TEST(PartialDiskLight, SectorSamplingMatchesPdf) {
+    TestScene ts;
+    Transform t = Translate({0.2f, 0, 2}) * Rotate(180, Vec3f(1, 0, 0)) * Rotate(20, Vec3f(0, 0, 1));
+    uint32_t li = ts.AddAreaLight(ts.AddDisk(t, 0.8f, 0.1f, 0.3f, 120), 1.5f);
+    SceneView s = ts.View();
+    LightSampleContext ctx{{0.2f, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+    Vec3f axis(0, 0, 1);
+    Float cosCap = 1 - 1.25f * (1 - 1.9f / std::sqrt(Sqr(1.9f) + Sqr(0.8f)));
+    SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap);
+    ExpectGood(r, 0.02);
+    EXPECT_EQ(r.chi2.failed, 0);
+}
+
+TEST(CylinderLight, SamplingMatchesPdfOutsideAndInside) {
+    // Axis along -y (object z), centered at (0, 0, 3); the reference point at mid-height sees the
+    // outside of the tube only, whose back half (facing away) refuses its samples. The partial
+    // tube's cut (object phi in [230, 360) degrees, turned by 155 about the axis) faces away
+    // from it, where only the refused back half is missing.
+    Transform t = Translate({0, 0, 3}) * Rotate(90, Vec3f(1, 0, 0));
+    for (Float phimax : {360.f, 230.f}) {
+        SCOPED_TRACE(phimax);
+        TestScene ts;
+        if (phimax < 360) t = t * Rotate(155, Vec3f(0, 0, 1));
+        uint32_t li = ts.AddAreaLight(ts.AddCylinder(t, 0.5f, -0.8f, 0.8f, phimax), 2);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0.1f, 0.05f, 0}, {0, 0, 1}, {0, 0, 1}};
+        Vec3f axis = Normalize(Vec3f(0, 0, 3) - ctx.p);
+        Float cosCap = CapForBox(ctx.p, axis, t, {-0.5f, -0.5f, -0.8f}, {0.5f, 0.5f, 0.8f});
+        SamplingCheck r = CheckSampling(s, li, ctx, axis, cosCap, false, 100000, 20, 24, nullptr, 0.02, true);
+        EXPECT_TRUE(test::Chi2Accepts(r.chi2));
+        EXPECT_EQ(r.pdfMismatches, 0);
+        EXPECT_GT(r.chi2.failed, 10000);
+    }
+    {
+        // Inside, normals reversed (facing the axis): every point is seen once.
+        SCOPED_TRACE("inside");
+        TestScene ts;
+        uint32_t li = ts.AddAreaLight(ts.AddCylinder(t, 0.5f, -0.8f, 0.8f, 300, true), 2);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0.1f, 0.2f, 3.05f}, {0, 0, 0}, {0, 0, 0}};
+        SamplingCheck r = CheckSampling(s, li, ctx, Vec3f(1, 0, 0), -1);
+        ExpectGood(r, 0.02);
+        EXPECT_EQ(r.chi2.failed, 0);
+    }
+}
+
+// At the center of a tube of radius r and half-length h, facing along the axis, the inner wall
+// of radiance L gives E = pi L h^2 / (h^2 + r^2) (the wall spans polar angles atan(r / h) to pi/2).
+TEST(CylinderLight, IrradianceOnTheAxisMatchesAnalytic) {
+    for (auto [r, h] : {std::pair<Float, Float>{0.5f, 1}, {1, 0.3f}}) {
+        TestScene ts;
+        uint32_t li = ts.AddAreaLight(ts.AddCylinder(Translate({0.3f, 0, 0}), r, -h, h, 360, true), 3);
+        SceneView s = ts.View();
+        LightSampleContext ctx{{0.3f, 0, 0}, {0, 0, 1}, {0, 0, 1}};
+        double mean, se;
+        EstimateIrradiance(s, li, ctx, 200000, &mean, &se);
+        double E = Pi * 3.0 * Sqr(h) / (Sqr(h) + Sqr(r));
+        EXPECT_NEAR(mean, E, 5 * se + 1e-3 * E) << "r " << r << " h " << h;
+    }
+}
+
+// The flux leaving a one-sided emitter (outward normals) through a sphere of radius R around
+// it, the integral of the inward irradiance over that sphere, is pi L A: estimated with one
+// light sample at each of N uniform points of the sphere. Outward rays from these shapes' outer
+// sides never meet them again, so no visibility test is needed. LightPhi is pi L A too.
+TEST(QuadricLights, FluxIsPiLTimesArea) {
+    struct Case { const char *what; Float area; };
+    const Float L = 1.5f, R = 4;
+    for (int k = 0; k < 4; ++k) {
+        TestScene ts;
+        Transform t = Translate({0.2f, -0.1f, 0.3f}) * Rotate(35, Vec3f(1, 1, 0));
+        uint32_t sh;
+        Float area;
+        const char *what;
+        if (k == 0) { sh = ts.AddCylinder(t, 0.6f, -0.5f, 0.9f); area = 1.4f * 0.6f * 2 * Pi; what = "cylinder"; }
+        else if (k == 1) { sh = ts.AddCylinder(t, 0.6f, -0.5f, 0.9f, 250); area = 1.4f * 0.6f * Radians(250); what = "cylinder, phimax 250"; }
+        else if (k == 2) { sh = ts.AddSphere(t, 0.8f, -0.3f, 0.7f, 200); area = Radians(200) * 0.8f * 1.0f; what = "partial sphere"; }
+        else { sh = ts.AddDisk(t, 0.9f, 0.2f, 0.25f, 150); area = Radians(150) / 2 * (Sqr(0.9f) - Sqr(0.25f)); what = "disk sector"; }
+        SCOPED_TRACE(what);
+        uint32_t li = ts.AddAreaLight(sh, L);
+        SceneView s = ts.View();
+        SampledWavelengths lambda = TestLambda();
+        EXPECT_NEAR(LightPhi(s.lights[li], s, lambda)[0], Pi * L * area, 1e-4f * area);
+        Vec3f center = t.ApplyPoint(Vec3f(0, 0, 0));
+        std::mt19937 rng(31 + k);
+        std::uniform_real_distribution<float> U(0, 1);
+        const int N = 400000;
+        double sum = 0, sum2 = 0;
+        for (int i = 0; i < N; ++i) {
+            Vec3f dir = SampleUniformSphere(Vec2f(U(rng), U(rng)));
+            LightSampleContext ctx{center + dir * R, -dir, -dir};
+            LightLiSample ls;
+            double v = 0;
+            if (SampleLi(s.lights[li], s, ctx, Vec2f(U(rng), U(rng)), lambda, &ls))
+                v = ls.L[0] * std::max(0.f, Dot(ls.wi, ctx.n)) / ls.pdf;
+            sum += v;
+            sum2 += v * v;
+        }
+        double mean = sum / N, se = std::sqrt(std::max(0.0, sum2 / N - mean * mean) / N);
+        double sphere = 4 * Pi * Sqr(R), flux = Pi * L * area;
+        EXPECT_NEAR(mean * sphere, flux, 5 * se * sphere + 2e-3 * flux) << "se " << se * sphere;
+    }
 }
 
 // ---- Infinite lights ----

@@ -677,6 +677,82 @@ TEST(Settings, UnusedParametersAreReportedByName) {
     EXPECT_EQ(found, 2);
 }
 
+// ---- Quadrics: pbrt-v4's cylinder, partial spheres and disks ----
+
+TEST(Quadrics, CylinderPartialSphereAndDiskParameters) {
+    Diagnostics diag;
+    auto s = BuildWorld("LightSource \"point\"\nShape \"cylinder\"\n"
+                        "AttributeBegin\nReverseOrientation\nShape \"cylinder\" \"float radius\" 0.5 \"float zmin\" 2 "
+                        "\"float zmax\" -0.5 \"float phimax\" 400\nAttributeEnd\n"
+                        "Shape \"sphere\" \"float radius\" 2 \"float zmin\" -3 \"float zmax\" 1 \"float phimax\" 90\n"
+                        "Shape \"sphere\" \"float zmin\" -4 \"float zmax\" 4 \"float phimax\" 360\n"
+                        "Shape \"disk\" \"float radius\" 2 \"float innerradius\" 1 \"float phimax\" 180\n",
+                        diag);
+    ASSERT_TRUE(s);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+    ASSERT_EQ(s->cylinders.size(), 2u);
+    const Cylinder &c0 = s->cylinders[0], &c1 = s->cylinders[1];
+    EXPECT_EQ(c0.radius, 1);
+    EXPECT_EQ(c0.zMin, -1);
+    EXPECT_EQ(c0.zMax, 1);
+    EXPECT_EQ(c0.phiMax, 2 * Pi);
+    EXPECT_FALSE(c0.flipNormals);
+    EXPECT_EQ(c1.zMin, -0.5f);   // ordered, as pbrt-v4
+    EXPECT_EQ(c1.zMax, 2);
+    EXPECT_EQ(c1.phiMax, 2 * Pi);   // clamped to 360
+    EXPECT_TRUE(c1.flipNormals);
+    ASSERT_EQ(s->spheres.size(), 2u);
+    const Sphere &sp = s->spheres[0];
+    EXPECT_EQ(sp.zMin, -2);   // clamped to -radius
+    EXPECT_EQ(sp.zMax, 1);
+    EXPECT_NEAR(sp.thetaZMin, Pi, 1e-6f);
+    EXPECT_NEAR(sp.thetaZMax, std::acos(0.5f), 1e-6f);
+    EXPECT_NEAR(sp.phiMax, Pi / 2, 1e-6f);
+    EXPECT_TRUE(IsPartial(sp));
+    EXPECT_FALSE(IsPartial(s->spheres[1]));
+    ASSERT_EQ(s->disks.size(), 1u);
+    EXPECT_NEAR(s->disks[0].phiMax, Pi, 1e-6f);
+    SceneView v = s->View();
+    EXPECT_NEAR(PrimitiveArea(v, v.shapes[0], 0), 2 * 2 * Pi, 1e-5f);
+    EXPECT_NEAR(PrimitiveArea(v, v.shapes[1], 0), 2.5f * 0.5f * 2 * Pi, 1e-5f);
+    EXPECT_NEAR(PrimitiveArea(v, v.shapes[2], 0), Pi / 2 * 2 * 3, 1e-5f);
+    EXPECT_NEAR(PrimitiveArea(v, v.shapes[4], 0), Pi / 2 * (4 - 1), 1e-5f);
+    // pbrt-v4's bounds of the partial sphere: the z slab [-2, 1] of its box.
+    EXPECT_NEAR(s->bounds.pMin.z, -2, 1e-5f);
+    EXPECT_NEAR(s->bounds.pMax.z, 2, 1e-5f);   // the second cylinder reaches z = 2
+    EXPECT_EQ(s->stats.shapesByType.at("cylinder"), 2);
+}
+
+TEST(Quadrics, AreaLightPowerUsesThePartialArea) {
+    // pbrt-v4's "power" normalization over Area(): (zmax - zmin) r phimax = 2 x 0.5 x pi for the
+    // half cylinder, phimax r (zmax - zmin) = pi / 2 x 1.5 for the partial sphere, phimax / 2
+    // (r^2 - ri^2) = pi / 4 x 0.75 for the disk sector.
+    const double Y = CIE_Y_integral, pi = 3.14159265358979;
+    const std::pair<const char *, double> cases[] = {
+        {"Shape \"cylinder\" \"float radius\" 0.5 \"float phimax\" 180", pi},
+        {"Shape \"sphere\" \"float zmin\" -0.5 \"float phimax\" 90", pi / 2 * 1.5},
+        {"Shape \"disk\" \"float innerradius\" 0.5 \"float phimax\" 90", pi / 4 * 0.75},
+    };
+    for (auto [shape, area] : cases) {
+        SCOPED_TRACE(shape);
+        Diagnostics diag;
+        auto s = BuildWorld(std::string("AreaLightSource \"diffuse\" \"float power\" 20\n") + shape + "\n", diag);
+        ASSERT_EQ(s->lights.size(), 1u);
+        EXPECT_NEAR(s->lights[0].scale / (20 / (pi * area) / Y), 1, 2e-3);
+    }
+}
+
+TEST(Quadrics, EmptyShapesAreDroppedWithAWarning) {
+    Diagnostics diag;
+    auto s = BuildWorld("LightSource \"point\"\nShape \"sphere\"\nShape \"cylinder\" \"float zmin\" 0.5 \"float zmax\" 0.5\n"
+                        "Shape \"sphere\" \"float phimax\" 0\nShape \"disk\" \"float phimax\" -10\n",
+                        diag);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->shapes.size(), 1u);
+    ASSERT_EQ(diag.warnings.size(), 3u);
+    for (const std::string &w : diag.warnings) EXPECT_TRUE(Contains(w, "no area")) << w;
+}
+
 // ---- One test per builder error class: message and line ----
 
 void ExpectError(const std::string &world, int line, const std::string &needle) {
@@ -688,8 +764,10 @@ void ExpectError(const std::string &world, int line, const std::string &needle) 
 TEST(Errors, UnknownMaterial) { ExpectError("Shape \"sphere\"\nMaterial \"plastic\"\nShape \"sphere\"\n", 5, "\"plastic\""); }
 TEST(Errors, UnsupportedMaterial) { ExpectError("Material \"mix\" \"string materials\" [\"a\" \"b\"]\n", 4, "\"mix\""); }
 TEST(Errors, UnknownShape) { ExpectError("Shape \"sphere\"\nShape \"teapot\"\n", 5, "\"teapot\""); }
-TEST(Errors, UnsupportedShape) { ExpectError("Shape \"cylinder\"\n", 4, "\"cylinder\""); }
-TEST(Errors, PartialSphere) { ExpectError("Shape \"sphere\" \"float phimax\" 180\n", 4, "partial sphere"); }
+TEST(Errors, UnsupportedShape) { ExpectError("Shape \"loopsubdiv\"\n", 4, "\"loopsubdiv\""); }
+TEST(Errors, CylinderRadius) {
+    ExpectError("Shape \"sphere\"\nShape \"cylinder\"\n  \"float radius\" -1\n", 6, "cylinder radius must be positive");
+}
 TEST(Errors, UnknownLight) { ExpectError("LightSource \"laser\"\n", 4, "\"laser\""); }
 TEST(Errors, UnsupportedLight) { ExpectError("LightSource \"projection\"\n", 4, "\"projection\""); }
 TEST(Errors, UnknownNamedSpectrum) {

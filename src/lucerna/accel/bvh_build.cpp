@@ -251,6 +251,11 @@ Bounds3f PrimitiveBounds(const SceneView &scene, uint32_t shapeId, uint32_t prim
                 : TransformedBox(d.renderFromObject, Vec3f(-r, -r, d.height), Vec3f(r, r, d.height));
         return PadBounds(b);
     }
+    case ShapeKind::Cylinder: {   // the whole tube's box, also for a partial one
+        const Cylinder &c = scene.cylinders[shape.index];
+        Float r = c.radius;
+        return PadBounds(TransformedBox(c.renderFromObject, Vec3f(-r, -r, c.zMin), Vec3f(r, r, c.zMax)));
+    }
     }
     return b;
 }

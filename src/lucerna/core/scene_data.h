@@ -146,7 +146,7 @@ struct Material {
 
 // ---- Shapes ----
 
-enum class ShapeKind : uint8_t { Triangles, Sphere, Disk };
+enum class ShapeKind : uint8_t { Triangles, Sphere, Disk, Cylinder };
 
 // A triangle mesh with world-space vertices. Triangle t of the mesh uses
 // indices[firstIndex + 3t .. +2], relative to firstVertex.
@@ -158,24 +158,59 @@ struct TriangleMesh {
     bool flipNormals = false;         // ReverseOrientation XOR transform swaps handedness
 };
 
-// pbrt-v4 sphere (full: zmin/zmax/phimax unsupported) in object space, radius r.
+// pbrt-v4 sphere of radius r at the object origin, cut (pbrt-v4's partial sphere) to
+// zMin <= z <= zMax and 0 <= phi <= phiMax (radians). The defaults are the full sphere; use
+// SetSphereClip for a partial one (it keeps thetaZMin, thetaZMax, the polar angles of zMin and
+// zMax, in step).
 struct Sphere {
     Transform renderFromObject;
     Float radius = 1;
+    Float zMin = -Infinity, zMax = Infinity;   // clamped to [-radius, radius] by SetSphereClip
+    Float thetaZMin = Pi, thetaZMax = 0;       // acos(zMin / r), acos(zMax / r)
+    Float phiMax = 2 * Pi;
     bool flipNormals = false;
 };
 
-// pbrt-v4 disk at z = height in object space, facing +z.
+// pbrt-v4 disk at z = height in object space, facing +z, between innerRadius and radius and
+// 0 <= phi <= phiMax (radians).
 struct Disk {
     Transform renderFromObject;
     Float height = 0, radius = 1, innerRadius = 0;
+    Float phiMax = 2 * Pi;
     bool flipNormals = false;
 };
+
+// pbrt-v4 cylinder: the open tube x^2 + y^2 = radius^2, zMin <= z <= zMax (no caps),
+// 0 <= phi <= phiMax (radians), in object space.
+struct Cylinder {
+    Transform renderFromObject;
+    Float radius = 1, zMin = -1, zMax = 1;
+    Float phiMax = 2 * Pi;
+    bool flipNormals = false;
+};
+
+// pbrt-v4's Radians(Clamp(phimax, 0, 360)), exactly 2 pi at 360 (so that a full shape is not a
+// partial one by a rounding).
+LU_INLINE Float PhiMaxRadians(Float degrees) { return degrees >= 360 ? 2 * Pi : Radians(Clamp(degrees, Float(0), Float(360))); }
+
+// pbrt-v4's Sphere constructor: z range ordered and clamped to [-r, r], phimax (degrees) clamped
+// to [0, 360].
+LU_INLINE void SetSphereClip(Sphere &sp, Float zMin, Float zMax, Float phiMaxDegrees) {
+    Float r = sp.radius, z0 = zMin < zMax ? zMin : zMax, z1 = zMin < zMax ? zMax : zMin;
+    sp.zMin = Clamp(z0, -r, r);
+    sp.zMax = Clamp(z1, -r, r);
+    sp.thetaZMin = std::acos(Clamp(z0 / r, Float(-1), Float(1)));
+    sp.thetaZMax = std::acos(Clamp(z1 / r, Float(-1), Float(1)));
+    sp.phiMax = PhiMaxRadians(phiMaxDegrees);
+}
+
+// A partial sphere: anything cut away (pbrt-v4's clip tests apply).
+LU_INLINE bool IsPartial(const Sphere &sp) { return sp.zMin > -sp.radius || sp.zMax < sp.radius || sp.phiMax < 2 * Pi; }
 
 // One entry per shape in the scene; its index is the geometry id used by every backend.
 struct Shape {
     ShapeKind kind = ShapeKind::Triangles;
-    uint32_t index = 0;            // into triangleMeshes, spheres or disks
+    uint32_t index = 0;            // into triangleMeshes, spheres, disks or cylinders
     uint32_t material = NoIndex;   // NoIndex: interface (no surface, rays pass through)
     uint32_t areaLight = NoIndex;  // first light index; primitive i of the shape has light areaLight + i
     uint32_t primitiveCount = 1;   // triangles of a mesh, 1 for analytic shapes
@@ -348,6 +383,7 @@ struct SceneView {
     Span<TriangleMesh> triangleMeshes;
     Span<Sphere> spheres;
     Span<Disk> disks;
+    Span<Cylinder> cylinders;
     Span<Shape> shapes;
     Span<Prototype> prototypes;     // object instancing: empty when the scene has none
     Span<Instance> instances;

@@ -38,13 +38,13 @@ static_assert(sizeof(BVHNode) == 64, "BVHNode must stay 64 bytes");
 
 // One primitive reference in a leaf: the geometry id and primitive, plus a copy of the
 // triangle's render-space vertices so a leaf test needs no index indirection (three 16-byte
-// loads on the GPU). Spheres and disks leave p0..p2 zero and are read from SceneView.
+// loads on the GPU). Spheres, disks and cylinders leave p0..p2 zero and are read from SceneView.
 // With spatial splits a primitive may be referenced from several leaves.
 struct alignas(16) PrimRef {
     Vec3f p0;
     uint32_t shape = 0;       // geometry id: index into SceneView::shapes
     Vec3f p1;
-    uint32_t primitive = 0;   // triangle index within its mesh; 0 for spheres and disks
+    uint32_t primitive = 0;   // triangle index within its mesh; 0 for analytic shapes
     Vec3f p2;
     uint32_t kind = 0;        // ShapeKind of the shape (saves a Shape fetch for triangles)
 };
@@ -52,7 +52,8 @@ static_assert(sizeof(PrimRef) == 48, "PrimRef must stay 48 bytes");
 
 // PrimRef::kind of an object instance in the top-level tree: `shape` is the index into
 // SceneView::instances; its prototype's tree (object space) starts at BVHView::prototypeRoots.
-constexpr uint32_t PrimRefInstance = 3;
+// Outside ShapeKind's range (a uint8_t).
+constexpr uint32_t PrimRefInstance = 0x100;
 
 // The BVH as spans (host or device memory). An empty `nodes` span means an empty scene.
 // Two levels with object instances: node 0 is the root of the top-level tree (render-space

@@ -82,6 +82,9 @@ LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const 
     case ShapeKind::Disk:
         *b1 = *b2 = 0;
         return IntersectDisk(scene.disks[scene.shapes[p.shape].index], ray, tMax, t);
+    case ShapeKind::Cylinder:
+        *b1 = *b2 = 0;
+        return IntersectCylinder(scene.cylinders[scene.shapes[p.shape].index], ray, tMax, t);
     }
     return false;
 }

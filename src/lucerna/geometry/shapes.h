@@ -1,5 +1,6 @@
-// Lucerna: ray-shape intersection and hit reconstruction for triangles, spheres and disks
-// (host and device). Conventions follow pbrt-v4's Triangle/Sphere/Disk: the geometric normal is
+// Lucerna: ray-shape intersection and hit reconstruction for triangles, spheres, disks and
+// cylinders, partial ones included (host and device). Conventions follow pbrt-v4's
+// Triangle/Sphere/Disk/Cylinder: the geometric normal is
 // flipped by ReverseOrientation XOR handedness swap, and for meshes with shading normals it is
 // made to face the shading normal (pbrt-v4's "orientation is authoritative").
 #pragma once
@@ -50,8 +51,33 @@ LU_INLINE bool IntersectTriangle(const Vec3f &p0, const Vec3f &p1, const Vec3f &
     return true;
 }
 
+// ---- Quadrics (pbrt-v4's Sphere, Disk and Cylinder) ----
+
+// Object-space areas, as pbrt-v4's Area(): phiMax r (zMax - zMin), phiMax (r^2 - ri^2) / 2 and
+// (zMax - zMin) r phiMax.
+LU_INLINE Float SphereArea(const Sphere &sp) {
+    return sp.phiMax * sp.radius * (Min(sp.zMax, sp.radius) - Max(sp.zMin, -sp.radius));
+}
+LU_INLINE Float DiskArea(const Disk &dk) { return Float(0.5) * dk.phiMax * (Sqr(dk.radius) - Sqr(dk.innerRadius)); }
+LU_INLINE Float CylinderArea(const Cylinder &cy) { return (cy.zMax - cy.zMin) * cy.radius * cy.phiMax; }
+
+// phi = atan2(y, x) in [0, 2 pi).
+LU_INLINE Float PhiOf(Float x, Float y) {
+    Float phi = std::atan2(y, x);
+    return phi < 0 ? phi + 2 * Pi : phi;
+}
+
+// pbrt-v4's clip test of a partial sphere at an object-space point on it (true: cut away).
+LU_INLINE bool SphereClipped(const Sphere &sp, double x, double y, double z) {
+    if ((sp.zMin > -sp.radius && z < sp.zMin) || (sp.zMax < sp.radius && z > sp.zMax)) return true;
+    if (sp.phiMax >= 2 * Pi) return false;
+    if (x == 0 && y == 0) x = 1e-5 * sp.radius;   // pbrt-v4's phi at the poles
+    return PhiOf(Float(x), Float(y)) > sp.phiMax;
+}
+
 // Sphere of radius r at the object origin. The ray is transformed to object space (t is
-// preserved because the direction is not renormalized). Solved in double for robustness.
+// preserved because the direction is not renormalized). Solved in double for robustness. A
+// partial sphere's near root, when cut away, gives way to the far one (pbrt-v4).
 LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit) {
     Vec3f o = s.renderFromObject.Inverted().ApplyPoint(ray.o);
     Vec3f d = s.renderFromObject.Inverted().ApplyVector(ray.d);
@@ -75,11 +101,20 @@ LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Floa
         if (t <= eps) return false;
     }
     if (t >= tMax) return false;
+    if (IsPartial(s)) {
+        for (;;) {
+            double px = o.x + t * d.x, py = o.y + t * d.y, pz = o.z + t * d.z;
+            double k = s.radius / std::sqrt(px * px + py * py + pz * pz);   // onto the surface
+            if (!SphereClipped(s, px * k, py * k, pz * k)) break;
+            if (t == t1 || !(t1 < tMax)) return false;
+            t = t1;
+        }
+    }
     *tHit = Float(t);
     return true;
 }
 
-// Disk at z = height in object space, radius and inner radius, full phi.
+// Disk at z = height in object space between the inner radius and the radius, phi <= phiMax.
 LU_INLINE bool IntersectDisk(const Disk &dk, const Ray &ray, Float tMax, Float *tHit) {
     Vec3f o = dk.renderFromObject.Inverted().ApplyPoint(ray.o);
     Vec3f d = dk.renderFromObject.Inverted().ApplyVector(ray.d);
@@ -89,8 +124,64 @@ LU_INLINE bool IntersectDisk(const Disk &dk, const Ray &ray, Float tMax, Float *
     Float px = o.x + t * d.x, py = o.y + t * d.y;
     Float r2 = px * px + py * py;
     if (r2 > dk.radius * dk.radius || r2 < dk.innerRadius * dk.innerRadius) return false;
+    if (dk.phiMax < 2 * Pi && PhiOf(px, py) > dk.phiMax) return false;
     *tHit = t;
     return true;
+}
+
+// Cylinder x^2 + y^2 = r^2, zMin <= z <= zMax, phi <= phiMax in object space (pbrt-v4's
+// Cylinder::BasicIntersect, in double as the sphere): the near root, else the far one.
+LU_INLINE bool IntersectCylinder(const Cylinder &cy, const Ray &ray, Float tMax, Float *tHit) {
+    Vec3f o = cy.renderFromObject.Inverted().ApplyPoint(ray.o);
+    Vec3f d = cy.renderFromObject.Inverted().ApplyVector(ray.d);
+    double a = double(d.x) * d.x + double(d.y) * d.y;
+    if (!(a > 0)) return false;   // parallel to the axis
+    double b = 2 * (double(d.x) * o.x + double(d.y) * o.y);
+    double c = double(o.x) * o.x + double(o.y) * o.y - double(cy.radius) * cy.radius;
+    double fx = o.x - b / (2 * a) * d.x, fy = o.y - b / (2 * a) * d.y;
+    double len = std::sqrt(fx * fx + fy * fy);
+    double disc = 4 * a * (double(cy.radius) + len) * (double(cy.radius) - len);
+    if (disc < 0) return false;
+    double root = std::sqrt(disc);
+    double q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    if (q == 0) return false;
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
+    double eps = 1e-6 * double(cy.radius) / std::sqrt(a);   // as the sphere's, in radial distance
+    double t = t0;
+    if (t <= eps) {
+        t = t1;
+        if (t <= eps) return false;
+    }
+    if (t >= tMax) return false;
+    for (;;) {
+        double px = o.x + t * d.x, py = o.y + t * d.y, pz = o.z + t * d.z;
+        bool clipped = pz < cy.zMin || pz > cy.zMax || (cy.phiMax < 2 * Pi && PhiOf(Float(px), Float(py)) > cy.phiMax);
+        if (!clipped) break;
+        if (t == t1 || !(t1 < tMax)) return false;
+        t = t1;
+    }
+    *tHit = Float(t);
+    return true;
+}
+
+// Intersects one analytic shape (sphere, disk, cylinder) in (0, tMax); false for triangles.
+LU_INLINE bool IntersectQuadric(const SceneView &s, const Shape &shape, const Ray &ray, Float tMax, Float *tHit) {
+    switch (shape.kind) {
+    case ShapeKind::Sphere: return IntersectSphere(s.spheres[shape.index], ray, tMax, tHit);
+    case ShapeKind::Disk: return IntersectDisk(s.disks[shape.index], ray, tMax, tHit);
+    case ShapeKind::Cylinder: return IntersectCylinder(s.cylinders[shape.index], ray, tMax, tHit);
+    case ShapeKind::Triangles: break;
+    }
+    return false;
+}
+
+// pbrt-v4's (u, v) of a (partial) sphere at an object-space point on it: u = phi / phiMax,
+// v = (theta - thetaZMin) / (thetaZMax - thetaZMin) (1 - theta / pi on the full sphere).
+LU_INLINE Vec2f SphereUV(const Sphere &sp, Vec3f pObj) {
+    if (pObj.x == 0 && pObj.y == 0) pObj.x = 1e-5f * sp.radius;
+    Float theta = SafeACos(pObj.z / sp.radius);
+    return Vec2f(PhiOf(pObj.x, pObj.y) / sp.phiMax, (theta - sp.thetaZMin) / (sp.thetaZMax - sp.thetaZMin));
 }
 
 // Vertex access for triangle `prim` of mesh m.
@@ -181,11 +272,8 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(pRender);
         pObj = pObj * (sp.radius / Length(pObj));  // reproject onto the surface
         si.p = sp.renderFromObject.ApplyPoint(pObj);
-        Float phi = std::atan2(pObj.y, pObj.x);
-        if (phi < 0) phi += 2 * Pi;
-        Float theta = SafeACos(pObj.z / sp.radius);
-        si.uv = Vec2f(phi / (2 * Pi), 1 - theta / Pi);
-        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        si.uv = SphereUV(sp, pObj);
+        Vec3f dpduObj(-sp.phiMax * pObj.y, sp.phiMax * pObj.x, 0);
         if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
         si.dpdu = sp.renderFromObject.ApplyVector(dpduObj);
         Vec3f n = Normalize(sp.renderFromObject.ApplyNormal(pObj));
@@ -200,15 +288,29 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         pObj.z = dk.height;
         si.p = dk.renderFromObject.ApplyPoint(pObj);
         Float dist = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
-        Float phi = std::atan2(pObj.y, pObj.x);
-        if (phi < 0) phi += 2 * Pi;
         Float rr = dk.radius - dk.innerRadius;
-        si.uv = Vec2f(phi / (2 * Pi), rr > 0 ? (dk.radius - dist) / rr : 0);
-        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        si.uv = Vec2f(PhiOf(pObj.x, pObj.y) / dk.phiMax, rr > 0 ? (dk.radius - dist) / rr : 0);
+        Vec3f dpduObj(-dk.phiMax * pObj.y, dk.phiMax * pObj.x, 0);
         if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
         si.dpdu = dk.renderFromObject.ApplyVector(dpduObj);
         Vec3f n = Normalize(dk.renderFromObject.ApplyNormal(Vec3f(0, 0, 1)));
         if (dk.flipNormals) n = -n;
+        si.n = si.ns = n;
+        break;
+    }
+    case ShapeKind::Cylinder: {
+        Cylinder cy = s.cylinders[shape.index];
+        if (inst) cy.renderFromObject = InstanceTransform(*inst) * cy.renderFromObject;
+        Vec3f pObj = cy.renderFromObject.Inverted().ApplyPoint(ray(hit.t));
+        Float hitRad = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
+        if (hitRad > 0) { pObj.x *= cy.radius / hitRad; pObj.y *= cy.radius / hitRad; }   // onto the surface
+        si.p = cy.renderFromObject.ApplyPoint(pObj);
+        Float h = cy.zMax - cy.zMin;
+        si.uv = Vec2f(PhiOf(pObj.x, pObj.y) / cy.phiMax, h > 0 ? (pObj.z - cy.zMin) / h : 0);
+        si.dpdu = cy.renderFromObject.ApplyVector(Vec3f(-cy.phiMax * pObj.y, cy.phiMax * pObj.x, 0));
+        // pbrt-v4's Normalize(Cross(dpdu, dpdv)): outwards.
+        Vec3f n = Normalize(cy.renderFromObject.ApplyNormal(Vec3f(pObj.x, pObj.y, 0)));
+        if (cy.flipNormals) n = -n;
         si.n = si.ns = n;
         break;
     }
@@ -217,7 +319,7 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
 }
 
 // Derivative of the unit shading normal along the tangent direction d (in the geometric plane):
-// a sphere's n/R (sign by orientation), a mesh's interpolated vertex normal (its normalization
+// a sphere's d/R (sign by orientation), a cylinder's d across the axis / R, a mesh's interpolated vertex normal (its normalization
 // included), zero otherwise. MNEE's chain derivatives and bump mapping's dndu/dndv use it.
 LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord &hit, const SurfaceInteraction &si,
                                         const Vec3f &d) {
@@ -229,6 +331,15 @@ LU_INLINE Vec3f ShadingNormalDerivative(const SceneView &scene, const HitRecord 
         Float R = sp.radius * Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
         Vec3f dn = d / R;
         return sp.flipNormals ? -dn : dn;
+    }
+    if (shape.kind == ShapeKind::Cylinder) {
+        // n = (x, y, 0) / R: d's component along the axis leaves it unchanged.
+        Cylinder cy = scene.cylinders[shape.index];
+        if (inst) cy.renderFromObject = InstanceTransform(*inst) * cy.renderFromObject;
+        Float R = cy.radius * Length(cy.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
+        Vec3f axis = Normalize(cy.renderFromObject.ApplyVector(Vec3f(0, 0, 1)));
+        Vec3f dn = (d - axis * Dot(axis, d)) / R;
+        return cy.flipNormals ? -dn : dn;
     }
     if (shape.kind != ShapeKind::Triangles) return Vec3f(0, 0, 0);
     const TriangleMesh &m = scene.triangleMeshes[shape.index];
@@ -263,7 +374,7 @@ LU_INLINE void TriangleBarycentrics(const Vec3f &p0, const Vec3f &p1, const Vec3
     *b2 = det != 0 ? (g11 * r2 - g12 * r1) / det : 0;
 }
 
-// pbrt-v4's shading dpdu, dpdv (Triangle, Sphere, Disk InteractionFromIntersection) at the hit si
+// pbrt-v4's shading dpdu, dpdv (Triangle, Sphere, Disk, Cylinder InteractionFromIntersection) at the hit si
 // and the derivatives of the unit shading normal along them (ShadingNormalDerivative; pbrt-v4
 // differentiates a mesh's unnormalized interpolated normal and does not flip a reversed
 // sphere's, which agree to first order in the displacement for unit vertex normals). Computed
@@ -324,10 +435,10 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         Float r = sp.radius, zRadius = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
         Float cosPhi = zRadius > 0 ? pObj.x / zRadius : 1, sinPhi = zRadius > 0 ? pObj.y / zRadius : 0;
         Float sinTheta = SafeSqrt(1 - Sqr(Clamp(pObj.z / r, Float(-1), Float(1))));
-        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        Vec3f dpduObj(-sp.phiMax * pObj.y, sp.phiMax * pObj.x, 0);
         if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
-        // v = 1 - theta / pi: dp/dv = (thetaMax - thetaMin) (z cos phi, z sin phi, -r sin theta), thetaMax - thetaMin = -pi.
-        Vec3f dpdvObj = Vec3f(pObj.z * cosPhi, pObj.z * sinPhi, -r * sinTheta) * -Pi;
+        // dp/dv = (thetaZMax - thetaZMin) (z cos phi, z sin phi, -r sin theta) (-pi on the full sphere).
+        Vec3f dpdvObj = Vec3f(pObj.z * cosPhi, pObj.z * sinPhi, -r * sinTheta) * (sp.thetaZMax - sp.thetaZMin);
         d.dpdu = sp.renderFromObject.ApplyVector(dpduObj);
         d.dpdv = sp.renderFromObject.ApplyVector(dpdvObj);
         d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);
@@ -339,12 +450,21 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         if (inst) dk.renderFromObject = InstanceTransform(*inst) * dk.renderFromObject;
         Vec3f pObj = dk.renderFromObject.Inverted().ApplyPoint(si.p);
         Float rHit = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
-        Vec3f dpduObj(-2 * Pi * pObj.y, 2 * Pi * pObj.x, 0);
+        Vec3f dpduObj(-dk.phiMax * pObj.y, dk.phiMax * pObj.x, 0);
         if (dpduObj.x == 0 && dpduObj.y == 0) dpduObj = Vec3f(1, 0, 0);
         Vec3f radial = rHit > 0 ? Vec3f(pObj.x / rHit, pObj.y / rHit, 0) : Vec3f(1, 0, 0);
         d.dpdu = dk.renderFromObject.ApplyVector(dpduObj);
         d.dpdv = dk.renderFromObject.ApplyVector(radial * (dk.innerRadius - dk.radius));
         return d;   // flat: dndu = dndv = 0
+    }
+    case ShapeKind::Cylinder: {
+        Cylinder cy = s.cylinders[shape.index];
+        if (inst) cy.renderFromObject = InstanceTransform(*inst) * cy.renderFromObject;
+        Vec3f pObj = cy.renderFromObject.Inverted().ApplyPoint(si.p);
+        d.dpdu = cy.renderFromObject.ApplyVector(Vec3f(-cy.phiMax * pObj.y, cy.phiMax * pObj.x, 0));
+        d.dpdv = cy.renderFromObject.ApplyVector(Vec3f(0, 0, cy.zMax - cy.zMin));
+        d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);   // dpdu / R (pbrt-v4's Weingarten equations)
+        return d;                                               // dndv = 0
     }
     }
     return d;
@@ -363,12 +483,17 @@ LU_INLINE Float PrimitiveArea(const SceneView &s, const Shape &shape, uint32_t p
         // Exact for similarity transforms (uniform scale).
         const Sphere &sp = s.spheres[shape.index];
         Float sc = Length(sp.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
-        return 4 * Pi * Sqr(sp.radius * sc);
+        return SphereArea(sp) * Sqr(sc);
     }
     case ShapeKind::Disk: {
         const Disk &dk = s.disks[shape.index];
         Float sc = Length(dk.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
-        return Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius)) * Sqr(sc);
+        return DiskArea(dk) * Sqr(sc);
+    }
+    case ShapeKind::Cylinder: {
+        const Cylinder &cy = s.cylinders[shape.index];
+        Float sc = Length(cy.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
+        return CylinderArea(cy) * Sqr(sc);
     }
     }
     return 0;

@@ -1,10 +1,13 @@
 // Lucerna: sampling points on emitting shapes as seen from a reference point, with solid-angle
-// pdfs (host and device). Follows pbrt-v4's Triangle/Sphere/Disk::Sample(ctx, u) and PDF(ctx, wi):
-// spherical-triangle sampling (Arvo 1995) with the bilinear cos-warp, cone sampling of spheres,
-// area sampling of disks; the spherical-triangle helpers after pbrt-v4's sampling.cpp.
+// pdfs (host and device). Follows pbrt-v4's Triangle/Sphere/Disk/Cylinder::Sample(ctx, u) and
+// PDF(ctx, wi): spherical-triangle sampling (Arvo 1995) with the bilinear cos-warp, cone sampling
+// of spheres, area sampling of disks and cylinders; the spherical-triangle helpers after pbrt-v4's
+// sampling.cpp. Partial shapes keep pbrt-v4's pdfs but return only points that exist (pbrt-v4
+// samples the whole sphere or disk, cut-away parts included: see SampleSphere, SampleDisk).
 #pragma once
 
 #include "lucerna/core/scene_data.h"
+#include "lucerna/geometry/shapes.h"
 #include "lucerna/sampling/warp.h"
 
 namespace lu {
@@ -188,7 +191,7 @@ LU_INLINE bool ReverseOrientation(bool flipNormals, const Transform &renderFromO
 }
 
 // Area used by the sampling pdfs, as pbrt-v4's Shape::Area(): render-space for triangles,
-// object-space (transform scale ignored) for spheres and disks.
+// object-space (transform scale ignored) for spheres, disks and cylinders.
 LU_INLINE Float ShapeArea(const SceneView &s, const Shape &shape, uint32_t prim) {
     switch (shape.kind) {
     case ShapeKind::Triangles: {
@@ -198,11 +201,9 @@ LU_INLINE Float ShapeArea(const SceneView &s, const Shape &shape, uint32_t prim)
               p2 = s.positions[m.firstVertex + idx[2]];
         return 0.5f * Length(Cross(p1 - p0, p2 - p0));
     }
-    case ShapeKind::Sphere: return 4 * Pi * Sqr(s.spheres[shape.index].radius);
-    case ShapeKind::Disk: {
-        const Disk &d = s.disks[shape.index];
-        return Pi * (Sqr(d.radius) - Sqr(d.innerRadius));
-    }
+    case ShapeKind::Sphere: return SphereArea(s.spheres[shape.index]);
+    case ShapeKind::Disk: return DiskArea(s.disks[shape.index]);
+    case ShapeKind::Cylinder: return CylinderArea(s.cylinders[shape.index]);
     }
     return 0;
 }
@@ -378,21 +379,34 @@ LU_INLINE bool InsideSphere(const Sphere &sp, const LightSampleContext &ctx, con
 LU_INLINE void SpherePointData(const Sphere &sp, const Vec3f &pObj, Vec3f *n, Vec2f *uv) {
     *n = Normalize(sp.renderFromObject.ApplyNormal(pObj));
     if (ReverseOrientation(sp.flipNormals, sp.renderFromObject)) *n = -*n;
-    Float phi = std::atan2(pObj.y, pObj.x);
-    if (phi < 0) phi += 2 * Pi;
-    *uv = Vec2f(phi / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+    *uv = SphereUV(sp, pObj);
 }
 
+// Inside the sphere: uniform by area (pbrt-v4); on a partial sphere over what is left of it
+// (z uniform in [zMin, zMax] and phi in [0, phiMax], Archimedes), where pbrt-v4 samples the
+// whole sphere with the partial sphere's pdf. Outside: pbrt-v4's uniform sampling of the cone
+// of directions the whole sphere subtends, with its pdf; on a partial sphere the point returned
+// is the first one that exists along the sampled direction (the far side seen through the cut),
+// and the sample fails where the direction misses the shape, where pbrt-v4 returns the cut-away
+// point on the near side. Both keep pbrt-v4's PDF (SpherePDF) and make it the sampled density.
 LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss, bool wantUV = true) {
     Vec3f pCenter = TransformOrigin(sp.renderFromObject);
+    bool partial = IsPartial(sp);
     if (InsideSphere(sp, ctx, pCenter)) {
         // Uniform area sampling, converted to solid angle.
-        Vec3f pObj = SampleUniformSphere(u) * sp.radius;
+        Vec3f pObj;
+        if (!partial) {
+            pObj = SampleUniformSphere(u) * sp.radius;
+        } else {
+            Float z = Lerp(u.x, sp.zMin, sp.zMax), rz = SafeSqrt(Sqr(sp.radius) - z * z), sinPhi, cosPhi;
+            SinCos(u.y * sp.phiMax, &sinPhi, &cosPhi);
+            pObj = Vec3f(rz * cosPhi, rz * sinPhi, z);
+        }
         SpherePointData(sp, pObj, &ss->n, &ss->uv);
         ss->p = sp.renderFromObject.ApplyPoint(pObj);
         Vec3f d = ss->p - ctx.p;
         if (LengthSquared(d) == 0) return false;
-        ss->pdf = AreaToSolidAnglePDF(1 / (4 * Pi * Sqr(sp.radius)), ctx.p, ss->p, ss->n, Normalize(d));
+        ss->pdf = AreaToSolidAnglePDF(1 / SphereArea(sp), ctx.p, ss->p, ss->n, Normalize(d));
         return ss->pdf > 0;
     }
     // Uniform sampling of the cone of directions subtended by the sphere.
@@ -419,12 +433,22 @@ LU_INLINE bool SampleSphere(const Sphere &sp, const LightSampleContext &ctx, Vec
     Frame frame = Frame::FromZ(Normalize(pCenter - ctx.p));
     Vec3f nOut = frame.FromLocal(-w);
     ss->p = pCenter + nOut * sp.radius;
+    Vec3f pObj;
+    if (partial) {
+        pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
+        if (SphereClipped(sp, pObj.x, pObj.y, pObj.z)) {
+            // The near point is cut away: the far end of the chord along the sampled direction.
+            Vec3f wi = Normalize(ss->p - ctx.p);
+            ss->p = ss->p + wi * (2 * Dot(pCenter - ss->p, wi));
+            nOut = Normalize(ss->p - pCenter);
+            pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
+            if (SphereClipped(sp, pObj.x, pObj.y, pObj.z)) return false;
+        }
+    }
     ss->n = ReverseOrientation(sp.flipNormals, sp.renderFromObject) ? -nOut : nOut;
     if (wantUV) {
-        Vec3f pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
-        Float phiObj = std::atan2(pObj.y, pObj.x);
-        if (phiObj < 0) phiObj += 2 * Pi;
-        ss->uv = Vec2f(phiObj / (2 * Pi), 1 - SafeACos(pObj.z / sp.radius) / Pi);
+        if (!partial) pObj = sp.renderFromObject.Inverted().ApplyPoint(ss->p);
+        ss->uv = SphereUV(sp, pObj);
     }
     ss->pdf = 1 / (2 * Pi * oneMinusCosThetaMax);
     return oneMinusCosThetaMax > 0;
@@ -434,30 +458,53 @@ LU_INLINE Float SpherePDF(const Sphere &sp, const LightSampleContext &ctx, const
                           const Vec3f &nLight) {
     Vec3f pCenter = TransformOrigin(sp.renderFromObject);
     if (InsideSphere(sp, ctx, pCenter))
-        return AreaToSolidAnglePDF(1 / (4 * Pi * Sqr(sp.radius)), ctx.p, pLight, nLight, wi);
+        return AreaToSolidAnglePDF(1 / SphereArea(sp), ctx.p, pLight, nLight, wi);
     Float sin2ThetaMax = Sqr(sp.radius) / DistanceSquared(ctx.p, pCenter);
     Float oneMinusCosThetaMax = 1 - SafeSqrt(1 - sin2ThetaMax);
     if (sin2ThetaMax < 0.00068523f) oneMinusCosThetaMax = sin2ThetaMax / 2;
     return 1 / (2 * Pi * oneMinusCosThetaMax);
 }
 
-// pbrt-v4 samples the full disk of the outer radius (the inner hole included) with pdf
-// 1 / Area(); we do the same for parity.
+// pbrt-v4 samples the full disk of the outer radius (the inner hole and, for phimax < 360, the
+// cut-away sector included) with pdf 1 / Area(). A full disk does the same here for parity; a
+// partial one samples its annular sector uniformly (r^2 uniform in [ri^2, r^2], phi in
+// [0, phiMax]), which is the density 1 / Area() that pbrt-v4's PDF assumes.
 LU_INLINE bool SampleDisk(const Disk &dk, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
-    Vec2f pd = SampleUniformDiskConcentric(u);
-    Vec3f pObj(pd.x * dk.radius, pd.y * dk.radius, dk.height);
+    Vec3f pObj;
+    if (dk.phiMax >= 2 * Pi) {
+        Vec2f pd = SampleUniformDiskConcentric(u);
+        pObj = Vec3f(pd.x * dk.radius, pd.y * dk.radius, dk.height);
+    } else {
+        Float rr = std::sqrt(Lerp(u.x, Sqr(dk.innerRadius), Sqr(dk.radius))), sinPhi, cosPhi;
+        SinCos(u.y * dk.phiMax, &sinPhi, &cosPhi);
+        pObj = Vec3f(rr * cosPhi, rr * sinPhi, dk.height);
+    }
     ss->p = dk.renderFromObject.ApplyPoint(pObj);
     ss->n = Normalize(dk.renderFromObject.ApplyNormal(Vec3f(0, 0, 1)));
     if (ReverseOrientation(dk.flipNormals, dk.renderFromObject)) ss->n = -ss->n;
     Float dist = std::sqrt(pObj.x * pObj.x + pObj.y * pObj.y);
-    Float phi = std::atan2(pObj.y, pObj.x);
-    if (phi < 0) phi += 2 * Pi;
     Float rr = dk.radius - dk.innerRadius;
-    ss->uv = Vec2f(phi / (2 * Pi), rr > 0 ? (dk.radius - dist) / rr : 0);
+    ss->uv = Vec2f(PhiOf(pObj.x, pObj.y) / dk.phiMax, rr > 0 ? (dk.radius - dist) / rr : 0);
     Vec3f d = ss->p - ctx.p;
     if (LengthSquared(d) == 0) return false;
-    Float area = Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius));
-    ss->pdf = AreaToSolidAnglePDF(1 / area, ctx.p, ss->p, ss->n, Normalize(d));
+    ss->pdf = AreaToSolidAnglePDF(1 / DiskArea(dk), ctx.p, ss->p, ss->n, Normalize(d));
+    return ss->pdf > 0;
+}
+
+// pbrt-v4's Cylinder::Sample: uniform by area (z uniform in [zMin, zMax], phi in [0, phiMax]),
+// converted to solid angle; the normal flipped by ReverseOrientation only.
+LU_INLINE bool SampleCylinder(const Cylinder &cy, const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
+    Float z = Lerp(u.x, cy.zMin, cy.zMax), phi = u.y * cy.phiMax, sinPhi, cosPhi;
+    SinCos(phi, &sinPhi, &cosPhi);
+    Vec3f pObj(cy.radius * cosPhi, cy.radius * sinPhi, z);
+    ss->p = cy.renderFromObject.ApplyPoint(pObj);
+    ss->n = Normalize(cy.renderFromObject.ApplyNormal(Vec3f(pObj.x, pObj.y, 0)));
+    if (ReverseOrientation(cy.flipNormals, cy.renderFromObject)) ss->n = -ss->n;
+    Float h = cy.zMax - cy.zMin;
+    ss->uv = Vec2f(u.y, h > 0 ? (z - cy.zMin) / h : 0);
+    Vec3f d = ss->p - ctx.p;
+    if (LengthSquared(d) == 0) return false;
+    ss->pdf = AreaToSolidAnglePDF(1 / CylinderArea(cy), ctx.p, ss->p, ss->n, Normalize(d));
     return ss->pdf > 0;
 }
 
@@ -470,6 +517,7 @@ LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim
     case ShapeKind::Triangles: return SampleTriangle(s, shape, prim, ctx, u, ss, wantUV);
     case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss, wantUV);
     case ShapeKind::Disk: return SampleDisk(s.disks[shape.index], ctx, u, ss);
+    case ShapeKind::Cylinder: return SampleCylinder(s.cylinders[shape.index], ctx, u, ss);
     }
     return false;
 }
@@ -481,10 +529,9 @@ LU_INLINE Float ShapePDF(const SceneView &s, const Shape &shape, uint32_t prim, 
     switch (shape.kind) {
     case ShapeKind::Triangles: return TrianglePDF(s, shape, prim, ctx, wi, pLight, nLight);
     case ShapeKind::Sphere: return SpherePDF(s.spheres[shape.index], ctx, wi, pLight, nLight);
-    case ShapeKind::Disk: {
-        const Disk &dk = s.disks[shape.index];
-        return AreaToSolidAnglePDF(1 / (Pi * (Sqr(dk.radius) - Sqr(dk.innerRadius))), ctx.p, pLight, nLight, wi);
-    }
+    case ShapeKind::Disk: return AreaToSolidAnglePDF(1 / DiskArea(s.disks[shape.index]), ctx.p, pLight, nLight, wi);
+    case ShapeKind::Cylinder:
+        return AreaToSolidAnglePDF(1 / CylinderArea(s.cylinders[shape.index]), ctx.p, pLight, nLight, wi);
     }
     return 0;
 }

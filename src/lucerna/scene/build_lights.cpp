@@ -413,6 +413,11 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
         Float r = dk.radius;
         *center = dk.renderFromObject.ApplyPoint(Vec3f(0, 0, dk.height));
         *radius = MaxCornerDistance(dk.renderFromObject, *center, Vec3f(-r, -r, dk.height), Vec3f(r, r, dk.height));
+    } else if (shape.kind == ShapeKind::Cylinder) {
+        const Cylinder &cy = s.cylinders[shape.index];
+        Float r = cy.radius;
+        *center = cy.renderFromObject.ApplyPoint(Vec3f(0, 0, (cy.zMin + cy.zMax) / 2));
+        *radius = MaxCornerDistance(cy.renderFromObject, *center, Vec3f(-r, -r, cy.zMin), Vec3f(r, r, cy.zMax));
     }
 }
 

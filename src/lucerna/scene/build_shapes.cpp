@@ -1,8 +1,9 @@
-// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk), their area
+// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk, cylinder), their area
 // lights and object instances (prototypes in object space plus instance records, or flattened), after pbrt-v4's shapes.cpp Create() functions,
 // TriangleMesh (util/mesh.cpp) and BasicScene::CreateLights / CreateAggregate (scene.cpp).
 #include <cmath>
 
+#include "lucerna/geometry/shapes.h"
 #include "lucerna/scene/build_internal.h"
 #include "lucerna/scene/loop_subdivision.h"
 #include "lucerna/scene/ply.h"
@@ -314,6 +315,34 @@ void DropSingular(BuildContext &ctx, const Placement &pl) {
                               std::string(pl.areaLight ? " and its area light is dropped" : ""));
 }
 
+// A quadric cut down to no area (zmin = zmax, phimax = 0) is never hit; pbrt-v4 keeps it.
+void DropEmpty(BuildContext &ctx, const Placement &pl) {
+    ShapeWarning(ctx, pl, pl.shape->name + ": the shape has no area (\"zmin\" = \"zmax\" or \"phimax\" 0); it is not rendered" +
+                              std::string(pl.areaLight ? " and its area light is dropped" : ""));
+}
+
+// The area light of an analytic shape: pbrt-v4 takes its power and sampling from the object-space
+// area (transform scale ignored).
+uint32_t AddQuadricAreaLight(BuildContext &ctx, const Placement &pl, uint32_t shapeIndex, Float objectArea) {
+    if (HasScale(pl.renderFromObject))
+        ctx.diag.Warning(pl.shape->loc, "scaling detected in the area light's transformation: pbrt-v4 assumes none "
+                                        "(its power and sampling use the object-space radius)");
+    return AddAreaLights(ctx, pl, shapeIndex, {objectArea});
+}
+
+void AddQuadricShape(BuildContext &ctx, const Placement &pl, ShapeKind kind, uint32_t index, Float objectArea) {
+    HostScene &s = ctx.scene;
+    Shape shape;
+    shape.kind = kind;
+    shape.index = index;
+    shape.material = pl.material;
+    uint32_t shapeIndex = uint32_t(s.shapes.size());
+    if (pl.areaLight) shape.areaLight = AddQuadricAreaLight(ctx, pl, shapeIndex, objectArea);
+    s.shapes.push_back(shape);
+}
+
+// pbrt-v4's Sphere::Create: radius, zmin, zmax (clamped to [-radius, radius]), phimax (degrees,
+// clamped to [0, 360]); a partial sphere is cut to zmin <= z <= zmax, phi <= phimax.
 void BuildSphere(BuildContext &ctx, const Placement &pl) {
     const ShapeEntity &sh = *pl.shape;
     const ParameterDictionary &p = sh.params;
@@ -321,32 +350,20 @@ void BuildSphere(BuildContext &ctx, const Placement &pl) {
     Float zmin = Float(p.GetOneFloat("zmin", -radius)), zmax = Float(p.GetOneFloat("zmax", radius));
     Float phimax = Float(p.GetOneFloat("phimax", 360));
     if (!(radius > 0)) Fail(ParamLoc(p, "radius", sh.loc), "sphere radius must be positive");
-    // pbrt-v4 clamps z to [-r, r] and phi to [0, 360]; anything short of the full sphere is partial.
-    Float z0 = Clamp(Min(zmin, zmax), -radius, radius), z1 = Clamp(Max(zmin, zmax), -radius, radius);
-    if (z0 > -radius || z1 < radius || Clamp(phimax, Float(0), Float(360)) < 360)
-        FailUnsupported(sh.loc, "partial sphere (\"zmin\", \"zmax\", \"phimax\")");
     if (pl.singular) return DropSingular(ctx, pl);
-    HostScene &s = ctx.scene;
     Sphere sp;
     sp.renderFromObject = pl.renderFromObject;
     sp.radius = radius;
+    SetSphereClip(sp, zmin, zmax, phimax);
     sp.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
-    AddBounds(ctx, pl, Vec3f(-radius, -radius, -radius), Vec3f(radius, radius, radius));
-    Shape shape;
-    shape.kind = ShapeKind::Sphere;
-    shape.index = uint32_t(s.spheres.size());
-    shape.material = pl.material;
-    uint32_t shapeIndex = uint32_t(s.shapes.size());
-    if (pl.areaLight) {
-        if (HasScale(pl.renderFromObject))
-            ctx.diag.Warning(sh.loc, "scaling detected in the area light's transformation: pbrt-v4 assumes none "
-                                     "(its power and sampling use the object-space radius)");
-        shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, {4 * Pi * radius * radius});  // object-space area, as pbrt-v4
-    }
-    s.spheres.push_back(sp);
-    s.shapes.push_back(shape);
+    if (!(SphereArea(sp) > 0)) return DropEmpty(ctx, pl);
+    // pbrt-v4's Sphere::Bounds: the z range's slab of the sphere's box.
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, sp.zMin), Vec3f(radius, radius, sp.zMax));
+    AddQuadricShape(ctx, pl, ShapeKind::Sphere, uint32_t(ctx.scene.spheres.size()), SphereArea(sp));
+    ctx.scene.spheres.push_back(sp);
 }
 
+// pbrt-v4's Disk::Create: height, radius, innerradius, phimax (degrees, clamped to [0, 360]).
 void BuildDisk(BuildContext &ctx, const Placement &pl) {
     const ShapeEntity &sh = *pl.shape;
     const ParameterDictionary &p = sh.params;
@@ -354,31 +371,43 @@ void BuildDisk(BuildContext &ctx, const Placement &pl) {
     Float radius = Float(p.GetOneFloat("radius", 1));
     Float inner = Float(p.GetOneFloat("innerradius", 0));
     Float phimax = Float(p.GetOneFloat("phimax", 360));
-    if (Clamp(phimax, Float(0), Float(360)) < 360) FailUnsupported(sh.loc, "partial disk (\"phimax\")");
     if (!(radius > 0) || inner < 0 || inner >= radius)
         Fail(sh.loc, "disk needs 0 <= innerradius < radius");
     if (pl.singular) return DropSingular(ctx, pl);
-    HostScene &s = ctx.scene;
     Disk d;
     d.renderFromObject = pl.renderFromObject;
     d.height = height;
     d.radius = radius;
     d.innerRadius = inner;
+    d.phiMax = PhiMaxRadians(phimax);
     d.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
+    if (!(DiskArea(d) > 0)) return DropEmpty(ctx, pl);
     AddBounds(ctx, pl, Vec3f(-radius, -radius, height), Vec3f(radius, radius, height));
-    Shape shape;
-    shape.kind = ShapeKind::Disk;
-    shape.index = uint32_t(s.disks.size());
-    shape.material = pl.material;
-    uint32_t shapeIndex = uint32_t(s.shapes.size());
-    if (pl.areaLight) {
-        if (HasScale(pl.renderFromObject))
-            ctx.diag.Warning(sh.loc, "scaling detected in the area light's transformation: pbrt-v4 assumes none "
-                                     "(its power and sampling use the object-space radius)");
-        shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, {Pi * (radius * radius - inner * inner)});
-    }
-    s.disks.push_back(d);
-    s.shapes.push_back(shape);
+    AddQuadricShape(ctx, pl, ShapeKind::Disk, uint32_t(ctx.scene.disks.size()), DiskArea(d));
+    ctx.scene.disks.push_back(d);
+}
+
+// pbrt-v4's Cylinder::Create: radius (1), zmin (-1), zmax (1) (ordered), phimax (360, clamped to
+// [0, 360]); the open tube, no caps.
+void BuildCylinder(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    Float radius = Float(p.GetOneFloat("radius", 1));
+    Float zmin = Float(p.GetOneFloat("zmin", -1)), zmax = Float(p.GetOneFloat("zmax", 1));
+    Float phimax = Float(p.GetOneFloat("phimax", 360));
+    if (!(radius > 0)) Fail(ParamLoc(p, "radius", sh.loc), "cylinder radius must be positive");
+    if (pl.singular) return DropSingular(ctx, pl);
+    Cylinder c;
+    c.renderFromObject = pl.renderFromObject;
+    c.radius = radius;
+    c.zMin = Min(zmin, zmax);
+    c.zMax = Max(zmin, zmax);
+    c.phiMax = PhiMaxRadians(phimax);
+    c.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
+    if (!(CylinderArea(c) > 0)) return DropEmpty(ctx, pl);
+    AddBounds(ctx, pl, Vec3f(-radius, -radius, c.zMin), Vec3f(radius, radius, c.zMax));
+    AddQuadricShape(ctx, pl, ShapeKind::Cylinder, uint32_t(ctx.scene.cylinders.size()), CylinderArea(c));
+    ctx.scene.cylinders.push_back(c);
 }
 
 // A finite transformation is required (an instance's product of two can overflow); a singular one
@@ -444,7 +473,8 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
     else if (name == "sphere") BuildSphere(ctx, pl);
     else if (name == "disk") BuildDisk(ctx, pl);
     else if (name == "loopsubdiv") BuildLoopSubdiv(ctx, pl);
-    else if (name == "cylinder" || name == "curve")
+    else if (name == "cylinder") BuildCylinder(ctx, pl);
+    else if (name == "curve")
         FailUnsupported(sh.loc, "Shape " + Quoted(name));
     else
         Fail(sh.loc, "unknown shape type " + Quoted(name));

@@ -29,6 +29,7 @@ SceneView HostScene::View() const {
     v.triangleMeshes = SpanOf(triangleMeshes);
     v.spheres = SpanOf(spheres);
     v.disks = SpanOf(disks);
+    v.cylinders = SpanOf(cylinders);
     v.shapes = SpanOf(shapes);
     v.prototypes = SpanOf(prototypes);
     v.instances = SpanOf(instances);

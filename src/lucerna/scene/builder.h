@@ -58,6 +58,7 @@ class HostScene {
     std::vector<TriangleMesh> triangleMeshes;
     std::vector<Sphere> spheres;
     std::vector<Disk> disks;
+    std::vector<Cylinder> cylinders;
     std::vector<Shape> shapes;
     std::vector<Prototype> prototypes;   // object instancing (build_shapes.cpp says which uses are instanced)
     std::vector<Instance> instances;

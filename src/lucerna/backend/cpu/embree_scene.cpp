@@ -33,13 +33,16 @@ Bounds3f ShapeBounds(const SceneView &s, const Shape &shape) {
         Float r = sp.radius;
         return TransformedBounds(sp.renderFromObject, Vec3f(-r, -r, -r), Vec3f(r, r, r));
     }
+    if (shape.kind == ShapeKind::Cylinder) {   // the whole tube's box, also for a partial one
+        const Cylinder &c = s.cylinders[shape.index];
+        return TransformedBounds(c.renderFromObject, Vec3f(-c.radius, -c.radius, c.zMin), Vec3f(c.radius, c.radius, c.zMax));
+    }
     const Disk &d = s.disks[shape.index];
     return TransformedBounds(d.renderFromObject, Vec3f(-d.radius, -d.radius, d.height), Vec3f(d.radius, d.radius, d.height));
 }
 
 bool IntersectAnalytic(const SceneView &s, const Shape &shape, const Ray &r, Float tMax, Float *t) {
-    if (shape.kind == ShapeKind::Sphere) return IntersectSphere(s.spheres[shape.index], r, tMax, t);
-    return IntersectDisk(s.disks[shape.index], r, tMax, t);
+    return IntersectQuadric(s, shape, r, tMax, t);
 }
 
 [[maybe_unused]] bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

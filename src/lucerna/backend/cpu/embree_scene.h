@@ -1,4 +1,4 @@
-// Lucerna CPU backend: the scene's geometry in Embree 3 (triangles natively; spheres and disks as
+// Lucerna CPU backend: the scene's geometry in Embree 3 (triangles natively; spheres, disks and cylinders as
 // user geometry running the shared intersection routines), and the Tracer the integrator uses.
 // Object instances: one RTCScene per prototype, and one user geometry whose primitives are the
 // instances (its callbacks map the ray to object space and query the prototype's scene): 68-105

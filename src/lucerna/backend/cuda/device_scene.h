@@ -27,6 +27,7 @@ class DeviceScene {
     DeviceBuffer<TriangleMesh> meshes_;
     DeviceBuffer<Sphere> spheres_;
     DeviceBuffer<Disk> disks_;
+    DeviceBuffer<Cylinder> cylinders_;
     DeviceBuffer<Shape> shapes_;
     DeviceBuffer<Prototype> prototypes_;
     DeviceBuffer<Instance> instances_;
