@@ -52,7 +52,9 @@ LU_INLINE bool IntersectTriangle(const Vec3f &p0, const Vec3f &p1, const Vec3f &
 
 // Sphere of radius r at the object origin. The ray is transformed to object space (t is
 // preserved because the direction is not renormalized). Solved in double for robustness.
-LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit) {
+// farSide: the far root only, when the near one is the hit found without it (the ray continued
+// after an alpha-ignored near hit, geometry/alpha.h).
+LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit, bool farSide = false) {
     Vec3f o = s.renderFromObject.Inverted().ApplyPoint(ray.o);
     Vec3f d = s.renderFromObject.Inverted().ApplyVector(ray.d);
     double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
@@ -70,7 +72,10 @@ LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Floa
     // Reject hits too close to the origin relative to the sphere size (self-intersection guard).
     double eps = 1e-6 * double(s.radius) / std::sqrt(a);
     double t = t0;
-    if (t <= eps) {
+    if (farSide) {
+        if (t0 <= eps) return false;   // the hit found was already the far root
+        t = t1;
+    } else if (t <= eps) {
         t = t1;
         if (t <= eps) return false;
     }
