@@ -79,7 +79,9 @@ TEST(Alpha, ZeroAlphaIsInvisibleToCameraAndShadowRays) {
                  {"alpha1", Cutouts("\"float alpha\" [ 1 ]"), true}};
     for (const Case &c : cases) {
         auto t = Trace(std::string("alpha_zero_") + c.name, std::string(kHead) + kWall + c.body);
-        if (std::string(c.name) == "alpha0_instanced") ASSERT_GT(t->view.instances.size, 0u);
+        if (std::string(c.name) == "alpha0_instanced") {
+            ASSERT_GT(t->view.instances.size, 0u);
+        }
         EXPECT_EQ(t->view.alphaShapes, c.visible ? 0u : 3u) << c.name;
         for (bool useBVH : {false, true}) {
             SCOPED_TRACE(std::string(c.name) + (useBVH ? " bvh" : " embree"));
