@@ -219,6 +219,9 @@ struct Shape {
     // Without a transition (no MediumInterface, or inside == outside) a ray keeps its medium.
     bool mediumTransition = false;
     uint32_t insideMedium = NoIndex, outsideMedium = NoIndex;
+    // pbrt-v4's "alpha" cut-out: floatTextures index of the alpha texture tested at every
+    // candidate hit (geometry/alpha.h); NoIndex: opaque (no test, no texture lookup).
+    uint32_t alpha = NoIndex;
 };
 
 // ---- Object instancing (pbrt-v4's ObjectBegin / ObjectInstance, one level) ----
@@ -410,6 +413,7 @@ struct SceneView {
     bool walkInterfaces = false;
     uint32_t transmitters = 0;      // materials that can transmit light (dielectric, thindielectric)
     uint32_t collimatedLights = 0;  // LightKind::Collimated lights (rays test their discs only when > 0)
+    uint32_t alphaShapes = 0;       // shapes with an alpha texture (the BVH tests Shape::alpha only when > 0)
     CameraData camera;
     FilmData film;
     FilterData filter;

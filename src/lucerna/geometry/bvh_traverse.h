@@ -5,6 +5,7 @@
 #pragma once
 
 #include "lucerna/core/interaction.h"
+#include "lucerna/geometry/alpha.h"
 #include "lucerna/geometry/bvh.h"
 #include "lucerna/geometry/shapes.h"
 
@@ -89,6 +90,30 @@ LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const 
     return false;
 }
 
+// IntersectPrimRef that also applies the shape's alpha cut-out (geometry/alpha.h): an ignored
+// hit is no hit (a sphere's far side is tried next). `ray` is in the primitive's space, renderRay
+// the same ray in render space, instance the one being traversed (NoIndex at the top level).
+// Scenes without alpha shapes (scene.alphaShapes == 0) take IntersectPrimRef unchanged.
+LU_INLINE bool IntersectPrimRefAlpha(const PrimRef &p, const SceneView &scene, const Ray &ray, const Ray &renderRay,
+                                     uint32_t instance, Float tMax, Float *t, Float *b1, Float *b2) {
+    if (scene.alphaShapes == 0) return IntersectPrimRef(p, scene, ray, tMax, t, b1, b2);
+    if (ShapeKind(p.kind) != ShapeKind::Triangles) {
+        *b1 = *b2 = 0;
+        return IntersectAnalyticAlpha(scene, p.shape, ray, renderRay, instance, tMax, t);
+    }
+    if (!IntersectTriangle(p.p0, p.p1, p.p2, ray, tMax, t, b1, b2)) return false;
+    uint32_t alpha = scene.shapes[p.shape].alpha;
+    if (alpha == NoIndex) return true;
+    HitRecord h;
+    h.t = *t;
+    h.shape = p.shape;
+    h.primitive = p.primitive;
+    h.b1 = *b1;
+    h.b2 = *b2;
+    h.instance = instance;
+    return AlphaTestHit(scene, alpha, renderRay, renderRay, h);
+}
+
 // The ray in an instance's object space: same t (the direction is not renormalized).
 LU_INLINE Ray InstanceRay(const Instance &in, const Ray &ray) {
     Ray r = ray;
@@ -99,10 +124,11 @@ LU_INLINE Ray InstanceRay(const Instance &in, const Ray &ray) {
 
 // Closest-hit traversal of the tree at `root` in (0, *tClosest), updating *tClosest and *best.
 // The top level (TopLevel) enters an instance's prototype tree with the ray in object space; the
-// bottom level is a separate instantiation (no recursion on the device).
+// bottom level is a separate instantiation (no recursion on the device). renderRay and instance
+// are for alpha tests: the render-space ray and the instance traversed (NoIndex at the top).
 template <bool TopLevel>
 LU_INLINE void TraverseClosest(const BVHView &bvh, const SceneView &scene, int32_t root, const Ray &ray,
-                               Float *tClosest, HitRecord *best) {
+                               const Ray &renderRay, uint32_t instance, Float *tClosest, HitRecord *best) {
     Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
     int32_t stack[BVHStackSize];
     int sp = 0;
@@ -132,13 +158,13 @@ LU_INLINE void TraverseClosest(const BVHView &bvh, const SceneView &scene, int32
                         int32_t r = bvh.prototypeRoots[in.prototype];
                         if (r < 0) continue;
                         Float tBefore = *tClosest;
-                        TraverseClosest<false>(bvh, scene, r, InstanceRay(in, ray), tClosest, best);
+                        TraverseClosest<false>(bvh, scene, r, InstanceRay(in, ray), renderRay, p.shape, tClosest, best);
                         if (*tClosest < tBefore) best->instance = p.shape;
                         continue;
                     }
                 }
                 Float t, b1, b2;
-                if (IntersectPrimRef(p, scene, ray, *tClosest, &t, &b1, &b2)) {
+                if (IntersectPrimRefAlpha(p, scene, ray, renderRay, instance, *tClosest, &t, &b1, &b2)) {
                     *tClosest = t;
                     best->t = t;
                     best->shape = p.shape;
@@ -167,7 +193,7 @@ LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, cons
     if (bvh.nodes.size == 0) return false;
     Float tClosest = ray.tMax;
     HitRecord best;
-    TraverseClosest<true>(bvh, scene, 0, ray, &tClosest, &best);
+    TraverseClosest<true>(bvh, scene, 0, ray, ray, NoIndex, &tClosest, &best);
     if (!best.Hit()) return false;
     *hit = best;
     return true;
@@ -175,7 +201,8 @@ LU_INLINE bool IntersectClosest(const BVHView &bvh, const SceneView &scene, cons
 
 // Any hit in (0, ray.tMax) in the tree at `root` (levels as TraverseClosest).
 template <bool TopLevel>
-LU_INLINE bool TraverseAny(const BVHView &bvh, const SceneView &scene, int32_t root, const Ray &ray) {
+LU_INLINE bool TraverseAny(const BVHView &bvh, const SceneView &scene, int32_t root, const Ray &ray,
+                           const Ray &renderRay, uint32_t instance) {
     Vec3f invD(SafeRcp(ray.d.x), SafeRcp(ray.d.y), SafeRcp(ray.d.z));
     int32_t stack[BVHStackSize];
     int sp = 0;
@@ -200,12 +227,12 @@ LU_INLINE bool TraverseAny(const BVHView &bvh, const SceneView &scene, int32_t r
                     if (p.kind == PrimRefInstance) {
                         const Instance &in = scene.instances[p.shape];
                         int32_t r = bvh.prototypeRoots[in.prototype];
-                        if (r >= 0 && TraverseAny<false>(bvh, scene, r, InstanceRay(in, ray))) return true;
+                        if (r >= 0 && TraverseAny<false>(bvh, scene, r, InstanceRay(in, ray), renderRay, p.shape)) return true;
                         continue;
                     }
                 }
                 Float t, b1, b2;
-                if (IntersectPrimRef(p, scene, ray, ray.tMax, &t, &b1, &b2)) return true;
+                if (IntersectPrimRefAlpha(p, scene, ray, renderRay, instance, ray.tMax, &t, &b1, &b2)) return true;
             }
         }
         if (nNext == 2) {
@@ -226,7 +253,7 @@ LU_INLINE bool TraverseAny(const BVHView &bvh, const SceneView &scene, int32_t r
 // Any hit in (0, ray.tMax) (shadow rays; tMax exclusive). Returns true if something is hit.
 LU_INLINE bool IntersectAny(const BVHView &bvh, const SceneView &scene, const Ray &ray) {
     if (bvh.nodes.size == 0) return false;
-    return TraverseAny<true>(bvh, scene, 0, ray);
+    return TraverseAny<true>(bvh, scene, 0, ray, ray, NoIndex);
 }
 
 // The Tracer of integrators/path.h over this BVH (the CUDA megakernel's; works on the host too).

@@ -78,7 +78,9 @@ LU_INLINE bool SphereClipped(const Sphere &sp, double x, double y, double z) {
 // Sphere of radius r at the object origin. The ray is transformed to object space (t is
 // preserved because the direction is not renormalized). Solved in double for robustness. A
 // partial sphere's near root, when cut away, gives way to the far one (pbrt-v4).
-LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit) {
+// farSide: the far root only, when the near one is the hit found without it (the ray continued
+// after an alpha-ignored near hit, geometry/alpha.h); false when the hit found was the far one.
+LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Float *tHit, bool farSide = false) {
     Vec3f o = s.renderFromObject.Inverted().ApplyPoint(ray.o);
     Vec3f d = s.renderFromObject.Inverted().ApplyVector(ray.d);
     double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
@@ -95,21 +97,18 @@ LU_INLINE bool IntersectSphere(const Sphere &s, const Ray &ray, Float tMax, Floa
     if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
     // Reject hits too close to the origin relative to the sphere size (self-intersection guard).
     double eps = 1e-6 * double(s.radius) / std::sqrt(a);
-    double t = t0;
-    if (t <= eps) {
-        t = t1;
-        if (t <= eps) return false;
-    }
-    if (t >= tMax) return false;
-    if (IsPartial(s)) {
-        for (;;) {
-            double px = o.x + t * d.x, py = o.y + t * d.y, pz = o.z + t * d.z;
-            double k = s.radius / std::sqrt(px * px + py * py + pz * pz);   // onto the surface
-            if (!SphereClipped(s, px * k, py * k, pz * k)) break;
-            if (t == t1 || !(t1 < tMax)) return false;
-            t = t1;
-        }
-    }
+    // A root is a hit when in (eps, tMax) and not on a cut-away part of a partial sphere.
+    auto isHit = [&](double t) {
+        if (!(t > eps && t < tMax)) return false;
+        if (!IsPartial(s)) return true;
+        double px = o.x + t * d.x, py = o.y + t * d.y, pz = o.z + t * d.z;
+        double k = s.radius / std::sqrt(px * px + py * py + pz * pz);   // onto the surface
+        return !SphereClipped(s, px * k, py * k, pz * k);
+    };
+    bool nearHit = isHit(t0);
+    if (farSide && !nearHit) return false;   // the hit found without farSide was already the far root
+    double t = nearHit && !farSide ? t0 : t1;
+    if (t == t1 && !isHit(t1)) return false;
     *tHit = Float(t);
     return true;
 }
@@ -130,8 +129,9 @@ LU_INLINE bool IntersectDisk(const Disk &dk, const Ray &ray, Float tMax, Float *
 }
 
 // Cylinder x^2 + y^2 = r^2, zMin <= z <= zMax, phi <= phiMax in object space (pbrt-v4's
-// Cylinder::BasicIntersect, in double as the sphere): the near root, else the far one.
-LU_INLINE bool IntersectCylinder(const Cylinder &cy, const Ray &ray, Float tMax, Float *tHit) {
+// Cylinder::BasicIntersect, in double as the sphere): the near root, else the far one. farSide:
+// as the sphere's.
+LU_INLINE bool IntersectCylinder(const Cylinder &cy, const Ray &ray, Float tMax, Float *tHit, bool farSide = false) {
     Vec3f o = cy.renderFromObject.Inverted().ApplyPoint(ray.o);
     Vec3f d = cy.renderFromObject.Inverted().ApplyVector(ray.d);
     double a = double(d.x) * d.x + double(d.y) * d.y;
@@ -148,19 +148,15 @@ LU_INLINE bool IntersectCylinder(const Cylinder &cy, const Ray &ray, Float tMax,
     double t0 = q / a, t1 = c / q;
     if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
     double eps = 1e-6 * double(cy.radius) / std::sqrt(a);   // as the sphere's, in radial distance
-    double t = t0;
-    if (t <= eps) {
-        t = t1;
-        if (t <= eps) return false;
-    }
-    if (t >= tMax) return false;
-    for (;;) {
+    auto isHit = [&](double t) {
+        if (!(t > eps && t < tMax)) return false;
         double px = o.x + t * d.x, py = o.y + t * d.y, pz = o.z + t * d.z;
-        bool clipped = pz < cy.zMin || pz > cy.zMax || (cy.phiMax < 2 * Pi && PhiOf(Float(px), Float(py)) > cy.phiMax);
-        if (!clipped) break;
-        if (t == t1 || !(t1 < tMax)) return false;
-        t = t1;
-    }
+        return !(pz < cy.zMin || pz > cy.zMax || (cy.phiMax < 2 * Pi && PhiOf(Float(px), Float(py)) > cy.phiMax));
+    };
+    bool nearHit = isHit(t0);
+    if (farSide && !nearHit) return false;   // the hit found without farSide was already the far root
+    double t = nearHit && !farSide ? t0 : t1;
+    if (t == t1 && !isHit(t1)) return false;
     *tHit = Float(t);
     return true;
 }

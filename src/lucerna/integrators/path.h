@@ -117,7 +117,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             break;
         }
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
-        if (si.areaLight != NoIndex) {
+        if (si.areaLight != NoIndex && !AreaLightAlphaMasked(scene.lights[si.areaLight], scene, si.p, si.uv)) {
             SampledSpectrum Le = AreaLightL(scene.lights[si.areaLight], scene, si.p, si.n, si.uv, si.wo, lambda);
             if (!Le.IsBlack()) {
                 SampledSpectrum c = beta * Le * EmitterHitWeight(prev, scene, si.areaLight, -si.wo, si.p, si.n, false, ps, rPath, lambda, tracer);

@@ -6,7 +6,9 @@
 #include "lucerna/lights/equal_area.h"
 #include "lucerna/lights/rgb_illuminant.h"
 #include "lucerna/lights/shape_sampling.h"
+#include "lucerna/materials/texture.h"
 #include "lucerna/sampling/distribution.h"
+#include "lucerna/sampling/hash.h"
 
 namespace lu {
 
@@ -82,6 +84,23 @@ LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f /
     if (l.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
     if (!l.twoSided && Dot(n, w) < 0) return SampledSpectrum(0);
     return SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+}
+
+// pbrt-v4's DiffuseAreaLight::AlphaMasked: the emitting shape's alpha a at light point p (uv: its
+// surface uv; the texture sees no normal, as pbrt-v4's Interaction(p, uv)) cuts the emission out
+// where a <= 0, or where HashFloat(p) > a for 0 < a < 1 (a hash of the point, so that light
+// sampling and emitter hits agree). SampleLi and emitter hits test it; AreaLightL does not.
+LU_INLINE bool AreaLightAlphaMasked(const Light &l, const SceneView &s, Vec3f p, Vec2f uv) {
+    uint32_t alpha = s.shapes[l.shape].alpha;
+    if (alpha == NoIndex) return false;
+    TextureEvalContext ctx;
+    ctx.p = p;
+    ctx.n = Vec3f(0, 0, 0);
+    ctx.uv = uv;
+    Float a = EvalFloatTexture(s.floatTextures[alpha], ctx, s);
+    if (a >= 1) return false;
+    if (a <= 0) return true;
+    return HashFloat(p) > a;
 }
 
 // ---- Image infinite light ----
@@ -171,10 +190,12 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     case LightKind::DiffuseArea: {
         const Shape &shape = s.shapes[l.shape];
         ShapeSample ss;
-        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss, /*wantUV=*/false) || !(ss.pdf > 0)) return false;
+        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss, /*wantUV=*/shape.alpha != NoIndex) || !(ss.pdf > 0))
+            return false;
         Vec3f d = ss.p - ctx.p;
         Float dist = Length(d);
         if (dist == 0) return false;
+        if (shape.alpha != NoIndex && AreaLightAlphaMasked(l, s, ss.p, ss.uv)) return false;
         ls->wi = d / dist;
         ls->L = AreaLightL(l, s, ss.p, ss.n, ss.uv, -ls->wi, lambda);
         if (ls->L.IsBlack()) return false;

@@ -464,9 +464,18 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
     const ShapeEntity &sh = *pl.shape;
     const std::string &name = sh.name;
     const ParameterDictionary &p = sh.params;
-    // Alpha cut-outs change visibility: refuse anything but fully opaque.
-    if (p.TypeOf("alpha") == "texture") FailUnsupported(ParamLoc(p, "alpha", sh.loc), "shape \"alpha\" texture");
-    if (p.Has("alpha") && p.GetOneFloat("alpha", 1) < 1) FailUnsupported(ParamLoc(p, "alpha", sh.loc), "shape \"alpha\" < 1");
+    // pbrt-v4's getAlphaTexture: a "texture alpha", or a constant "float alpha" below 1.
+    uint32_t alpha = NoIndex;
+    if (p.TypeOf("alpha") == "texture" || (p.Has("alpha") && p.GetOneFloat("alpha", 1) < 1))
+        alpha = GetFloatTextureNode(ctx, p, "alpha", 1);
+    if (alpha != NoIndex && pl.areaLight) {
+        // pbrt-v4 turns an emitter with a constant alpha of 0 into an invisible light sampled as a
+        // delta-position light (no MIS); Lucerna's techniques have no such light type yet.
+        const FloatTexture &a = ctx.scene.floatTextures[alpha];
+        if (a.kind == TextureKind::Constant && a.value == 0)
+            FailUnsupported(ParamLoc(p, "alpha", sh.loc), "area light with a constant \"alpha\" of 0 (an invisible emitter)");
+    }
+    const size_t firstShape = ctx.scene.shapes.size();
     if (name == "trianglemesh") BuildTriangleMesh(ctx, pl);
     else if (name == "plymesh") BuildPlyMesh(ctx, pl);
     else if (name == "bilinearmesh") BuildBilinearMesh(ctx, pl);
@@ -478,6 +487,7 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
         FailUnsupported(sh.loc, "Shape " + Quoted(name));
     else
         Fail(sh.loc, "unknown shape type " + Quoted(name));
+    for (size_t i = firstShape; i < ctx.scene.shapes.size(); ++i) ctx.scene.shapes[i].alpha = alpha;
     ctx.scene.stats.shapesByType[name]++;
     if (reportUnused) p.ReportUnused(ctx.diag, "Shape " + Quoted(name));
 }

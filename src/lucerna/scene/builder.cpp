@@ -55,6 +55,7 @@ SceneView HostScene::View() const {
     for (const Material &m : materials)
         v.transmitters += m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric;
     for (const Light &l : lights) v.collimatedLights += l.kind == LightKind::Collimated;
+    for (const Shape &sh : shapes) v.alphaShapes += sh.alpha != NoIndex;
     v.camera = camera;
     v.film = film;
     v.filter = filter;

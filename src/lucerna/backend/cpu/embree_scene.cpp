@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lucerna/geometry/alpha.h"
 #include "lucerna/geometry/shapes.h"
 
 namespace lu {
@@ -41,8 +42,33 @@ Bounds3f ShapeBounds(const SceneView &s, const Shape &shape) {
     return TransformedBounds(d.renderFromObject, Vec3f(-d.radius, -d.radius, d.height), Vec3f(d.radius, d.radius, d.height));
 }
 
-bool IntersectAnalytic(const SceneView &s, const Shape &shape, const Ray &r, Float tMax, Float *t) {
-    return IntersectQuadric(s, shape, r, tMax, t);
+// The callbacks' context (every query passes an EmbreeAlphaContext).
+const EmbreeAlphaContext &AlphaContext(const RTCIntersectContext *c) {
+    return *reinterpret_cast<const EmbreeAlphaContext *>(c);
+}
+
+// An analytic shape's hit, its alpha cut-out applied (IntersectAnalyticAlpha).
+bool IntersectAnalytic(const SceneView &s, uint32_t shape, const Ray &r, const RTCIntersectContext *c, Float tMax,
+                       Float *t) {
+    const EmbreeAlphaContext &ac = AlphaContext(c);
+    return IntersectAnalyticAlpha(s, shape, r, *ac.renderRay, ac.instance, tMax, t);
+}
+
+// Triangle meshes with alpha: drops the candidate hits the cut-out ignores (intersect and occluded).
+void AlphaFilter(const RTCFilterFunctionNArguments *args) {
+    auto *d = static_cast<const EmbreeUserData *>(args->geometryUserPtr);
+    const EmbreeAlphaContext &ac = AlphaContext(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        HitRecord h;
+        h.t = RTCRayN_tfar(args->ray, args->N, i);   // the candidate's distance
+        h.shape = d->shape;
+        h.primitive = RTCHitN_primID(args->hit, args->N, i);
+        h.b1 = RTCHitN_u(args->hit, args->N, i);
+        h.b2 = RTCHitN_v(args->hit, args->N, i);
+        h.instance = ac.instance;
+        if (!AlphaKeepsHit(*d->view, *ac.renderRay, h)) args->valid[i] = 0;
+    }
 }
 
 [[maybe_unused]] bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -69,7 +95,7 @@ void UserIntersect(const RTCIntersectFunctionNArguments *args) {
         r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
         Float tfar = RTCRayN_tfar(rn, args->N, i);
         Float t;
-        if (!IntersectAnalytic(*d->view, d->view->shapes[d->shape], r, tfar, &t)) continue;
+        if (!IntersectAnalytic(*d->view, d->shape, r, args->context, tfar, &t)) continue;
         assert(t >= 0 && t <= tfar && "Embree user geometry: hit distance NaN or out of the ray's range");
         RTCRayN_tfar(rn, args->N, i) = t;
         RTCHitN_geomID(hn, args->N, i) = args->geomID;
@@ -92,7 +118,7 @@ void UserOccluded(const RTCOccludedFunctionNArguments *args) {
         r.o = Vec3f(RTCRayN_org_x(rn, args->N, i), RTCRayN_org_y(rn, args->N, i), RTCRayN_org_z(rn, args->N, i));
         r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
         Float t;
-        if (IntersectAnalytic(*d->view, d->view->shapes[d->shape], r, RTCRayN_tfar(rn, args->N, i), &t))
+        if (IntersectAnalytic(*d->view, d->shape, r, args->context, RTCRayN_tfar(rn, args->N, i), &t))
             RTCRayN_tfar(rn, args->N, i) = -Infinity;
     }
 }
@@ -141,9 +167,11 @@ void InstanceIntersect(const RTCIntersectFunctionNArguments *args) {
         ObjectRay(in, rn, args->N, i, &rh.ray);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        rtcIntersect1((*d->prototypes)[in.prototype], &ctx, &rh);
+        EmbreeAlphaContext ctx;
+        rtcInitIntersectContext(&ctx.ctx);
+        ctx.renderRay = AlphaContext(args->context).renderRay;
+        ctx.instance = args->primID;
+        rtcIntersect1((*d->prototypes)[in.prototype], &ctx.ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
         RTCRayN_tfar(rn, args->N, i) = rh.ray.tfar;
         RTCHitN_geomID(hn, args->N, i) = firstShape + rh.hit.geomID;   // the shape id
@@ -165,9 +193,11 @@ void InstanceOccluded(const RTCOccludedFunctionNArguments *args) {
         if (!args->valid[i]) continue;
         RTCRay r;
         ObjectRay(in, rn, args->N, i, &r);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        rtcOccluded1((*d->prototypes)[in.prototype], &ctx, &r);
+        EmbreeAlphaContext ctx;
+        rtcInitIntersectContext(&ctx.ctx);
+        ctx.renderRay = AlphaContext(args->context).renderRay;
+        ctx.instance = args->primID;
+        rtcOccluded1((*d->prototypes)[in.prototype], &ctx.ctx, &r);
         if (r.tfar < 0) RTCRayN_tfar(rn, args->N, i) = -Infinity;
     }
 }
@@ -208,6 +238,12 @@ EmbreeScene::EmbreeScene(const SceneView &s) : view_(&s) {
             auto *ib = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                        3 * sizeof(uint32_t), m.triangleCount));
             std::memcpy(ib, s.indices.ptr + m.firstIndex, size_t(m.triangleCount) * 3 * sizeof(uint32_t));
+            if (shape.alpha != NoIndex) {
+                userData_.push_back(EmbreeUserData{&s, id});
+                rtcSetGeometryUserData(g, &userData_.back());
+                rtcSetGeometryIntersectFilterFunction(g, AlphaFilter);
+                rtcSetGeometryOccludedFilterFunction(g, AlphaFilter);
+            }
         } else {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
             userData_.push_back(EmbreeUserData{&s, id});

@@ -1,5 +1,7 @@
 // Lucerna CPU backend: the scene's geometry in Embree 3 (triangles natively; spheres, disks and cylinders as
 // user geometry running the shared intersection routines), and the Tracer the integrator uses.
+// Shape alpha cut-outs (geometry/alpha.h): a filter function on the triangle meshes that have
+// one (no filter elsewhere), the user geometries' callbacks test it themselves.
 // Object instances: one RTCScene per prototype, and one user geometry whose primitives are the
 // instances (its callbacks map the ray to object space and query the prototype's scene): 68-105
 // bytes per instance against 443 for Embree's native instance geometry (docs/benchmarks.md).
@@ -20,6 +22,15 @@ namespace lu {
 struct EmbreeUserData {
     const SceneView *view;
     uint32_t shape;
+};
+
+// The intersect context of every query: Embree's, then what shape alpha tests need (the
+// render-space ray, and the instance whose prototype is traversed, NoIndex at the top level).
+// Filter and user-geometry callbacks cast their context back to it.
+struct EmbreeAlphaContext {
+    RTCIntersectContext ctx;
+    const Ray *renderRay = nullptr;
+    uint32_t instance = NoIndex;
 };
 
 // Payload of the instances' user geometry.
@@ -60,8 +71,9 @@ inline bool EmbreeValidRay(const Ray &r) {
 // The queries are inline: the integrator calls them several times per sample.
 inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
     assert(EmbreeValidRay(ray) && "EmbreeScene::Intersect: NaN/infinite ray");
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    EmbreeAlphaContext ctx;
+    rtcInitIntersectContext(&ctx.ctx);
+    ctx.renderRay = &ray;
     RTCRayHit rh;
     rh.ray.org_x = ray.o.x; rh.ray.org_y = ray.o.y; rh.ray.org_z = ray.o.z;
     rh.ray.dir_x = ray.d.x; rh.ray.dir_y = ray.d.y; rh.ray.dir_z = ray.d.z;
@@ -73,7 +85,7 @@ inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &ctx, &rh);
+    rtcIntersect1(scene_, &ctx.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit->t = rh.ray.tfar;
     hit->shape = rh.hit.geomID;
@@ -86,8 +98,9 @@ inline bool EmbreeScene::Intersect(const Ray &ray, HitRecord *hit) const {
 
 inline bool EmbreeScene::Occluded(const Ray &ray) const {
     assert(EmbreeValidRay(ray) && "EmbreeScene::Occluded: NaN/infinite ray");
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    EmbreeAlphaContext ctx;
+    rtcInitIntersectContext(&ctx.ctx);
+    ctx.renderRay = &ray;
     RTCRay r;
     r.org_x = ray.o.x; r.org_y = ray.o.y; r.org_z = ray.o.z;
     r.dir_x = ray.d.x; r.dir_y = ray.d.y; r.dir_z = ray.d.z;
@@ -97,7 +110,7 @@ inline bool EmbreeScene::Occluded(const Ray &ray) const {
     r.mask = 0xffffffffu;
     r.id = 0;
     r.flags = 0;
-    rtcOccluded1(scene_, &ctx, &r);
+    rtcOccluded1(scene_, &ctx.ctx, &r);
     return r.tfar < 0;
 }
 
