@@ -95,6 +95,8 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     if (hit.instance != NoIndex) return MneeSurfaceKind::Blocking;
     // Cylinders are not chain vertices either (the solver is tested on spheres and meshes).
     if (shape.kind == ShapeKind::Cylinder) return MneeSurfaceKind::Blocking;
+    // Nor cut-outs: the solver moves vertices over the surface, holes included.
+    if (shape.alpha != NoIndex) return MneeSurfaceKind::Blocking;
     const Material &mat = ResolveMixMaterial(scene.materials[si.material], si, scene);   // a mix: its pick at si
     if (mat.kind != MaterialKind::Dielectric && mat.kind != MaterialKind::ThinDielectric) return MneeSurfaceKind::Blocking;
     // The solver uses the interpolated normal and one index per surface; a normal- or
