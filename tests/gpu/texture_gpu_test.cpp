@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "gpu/cpu_gpu_renders.h"
 #include "gpu/render_compare.h"
 #include "integrators/render_helpers.h"
 #include "lucerna/backend/cpu/cpu_render.h"
@@ -40,23 +41,11 @@ TEST(GpuTextures, FeatureScenesMatchCpu) {
         BuildOptions opts;
         opts.resX = opts.resY = res;
         auto host = LoadScene(file, diag, opts);
-        GpuBVH bvh = BuildBVH(host->View());
-        DeviceScene dev(host->View(), bvh);
-        std::vector<Image> cpu, gpu;
-        uint64_t rejected = 0;
-        for (int s = 0; s < seeds; ++s) {
-            FilmAccumulator fc, fg;
-            RenderCPU(*host, test::SettingsFor(*host, "path", spp, 1 + s), fc);
-            RenderStats sg = RenderCUDA(dev, host->sampler, test::SettingsFor(*host, "path", spp, 101 + s), fg);
-            rejected += sg.rejected;
-            cpu.push_back(fc.Resolve(host->View().film));
-            gpu.push_back(fg.Resolve(host->View().film));
-            EXPECT_TRUE(test::AllFinite(gpu.back()));
-        }
-        test::BlockComparison r = test::CompareBlockMeans(cpu, gpu, block, z);
+        test::CpuGpuRenders rr = test::RenderCpuAndGpu(*host, spp, seeds);
+        test::BlockComparison r = test::CompareBlockMeans(rr.cpu, rr.gpu, block, z);
         std::printf("[ cpu/gpu  ] %-40s %s\n", std::filesystem::path(file).filename().c_str(), r.Summary().c_str());
         EXPECT_EQ(r.failures, 0) << r.Summary() << " (threshold " << z << ")";
-        EXPECT_EQ(rejected, 0u);
+        EXPECT_EQ(rr.gpuRejected, 0u);
     }
 #else
     GTEST_SKIP() << "built without CUDA (LUCERNA_HAVE_CUDA unset)";
