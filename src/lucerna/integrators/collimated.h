@@ -37,10 +37,19 @@ LU_INLINE uint32_t NearestBeamCrossing(const SceneView &scene, const Ray &ray, F
 // r: the path's per-wavelength probabilities when it went through a medium (as EmitterHitWeight).
 LU_INLINE Float BeamHitWeight(const ScatterVertex &v, const SceneView &scene, uint32_t li, Vec3f wi, Vec3f y, Float t,
                               const PathSettings &ps, const WavelengthPdfs *r, const SampledWavelengths &lambda) {
-    bool explicitExists = !v.camera && !v.specular;
-    if (!explicitExists || ps.strategy == LightStrategy::BSDFOnly) return r ? WavelengthWeight(r->u, 1, r->l, 0, lambda) : 1;
-    if (ps.strategy == LightStrategy::NEEOnly) return 0;
+    if (v.camera || (v.specular && !v.regularized)) return r ? WavelengthWeight(r->u, 1, r->l, 0, lambda) : 1;
     Float pdfLightW = LightPMF(scene, li) * BeamMixturePdfW(scene.lights[li], y, t, -wi, BeamOneMinusCos(ps.reg));
+    if (v.specular) {
+        // After a Dirac lobe where the regularized connection ran (a non-specular vertex came
+        // before): its partner is the connection to this beam, lobe-aware as for area lights
+        // (EmitterHitWeight), the light picked among the connection's candidates.
+        pdfLightW /= v.candidatePmf;
+        Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, t));
+        if (!r) return RegularizedHitWeight(pdfConeW, pdfLightW);
+        return RegularizedHitWeight(pdfConeW, r->l[0] * pdfLightW) * WavelengthWeight(r->u, pdfConeW, r->l, pdfLightW, lambda);
+    }
+    if (ps.strategy == LightStrategy::BSDFOnly) return r ? WavelengthWeight(r->u, 1, r->l, 0, lambda) : 1;
+    if (ps.strategy == LightStrategy::NEEOnly) return 0;
     if (!r) return BSDFHitWeight(ps.strategy, v.pdfBsdfW, pdfLightW);
     return BSDFHitWeight(ps.strategy, v.pdfBsdfW, r->l[0] * pdfLightW) *
            WavelengthWeight(r->u, v.pdfBsdfW, r->l, pdfLightW, lambda);

@@ -306,8 +306,11 @@ LU_HD bool MneeCoversPath(const ScatterVertex &in, const SurfaceInteraction &si,
 LU_INLINE bool RegularizedCandidate(const SceneView &scene, uint32_t li, Vec3f p, const SpecularLobe *lobes, int n,
                                     Float radius, bool deltaOnly, bool allowIncompletePDF) {
     const Light &light = scene.lights[li];
+    // A collimated beam is a candidate after a non-specular vertex only (the regularized beam
+    // connection, two kernels: SampleRegularized); from the camera through Dirac lobes the
+    // implicit technique alone reaches it (BeamHitWeight: weight 1).
+    if (light.kind == LightKind::Collimated && deltaOnly) return false;
     if (deltaOnly && !IsDeltaLight(light)) return false;
-    if (light.kind == LightKind::Collimated) return false;   // reached by no connection from a Dirac lobe
     if (allowIncompletePDF && light.kind == LightKind::UniformInfinite) return false;
     if (light.boundRadius < 0) return true;
     for (int i = 0; i < n; ++i)
@@ -358,7 +361,8 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, allowIncomplete, &ls)) return SampledSpectrum(0);
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, allowIncomplete, &ls, BeamOneMinusCos(rp)))
+        return SampledSpectrum(0);
     Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
     Float pdfConeW = ConePdfW(oneMinusCos);
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;

@@ -397,6 +397,11 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
         *radius = 0;
         return;
     }
+    if (l.kind == LightKind::Collimated) {   // the disc
+        *center = l.position;
+        *radius = l.beamRadius;
+        return;
+    }
     if (l.kind != LightKind::DiffuseArea || l.shape == NoIndex) return;
     const Shape &shape = s.shapes[l.shape];
     if (shape.kind == ShapeKind::Triangles) {

@@ -364,6 +364,11 @@ void BuildIntegrator(BuildContext &ctx) {
     RenderSettings &rs = ctx.scene.settings;
     const ParameterDictionary &p = e.params;
     ctx.scene.stats.integratorAsRead = e.name;
+    // A scene with a collimated beam has paths with two kernels (the regularized connection from a
+    // specular vertex to the beam): their bias and variance balance at lambda = 1/8, where paths
+    // with one kernel still converge (docs/regularization.md, "Two regularized vertices").
+    for (const LightEntity &l : ctx.desc.lights)
+        if (l.name == "collimated") rs.regLambda = 1.0 / 8;
     if (e.name.empty()) return;  // pbrt-v4's default "volpath": the same image as "path" without media
     rs.maxDepth = p.GetOneInt("maxdepth", 5);
     if (rs.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", e.loc), "\"maxdepth\" must not be negative");
@@ -376,7 +381,7 @@ void BuildIntegrator(BuildContext &ctx) {
     } else if (e.name == "regpath") {
         rs.integrator = IntegratorKind::RegPath;
         rs.regRadius = p.GetOneFloat("radius", 0);
-        rs.regLambda = p.GetOneFloat("lambda", 1.0 / 6);
+        rs.regLambda = p.GetOneFloat("lambda", rs.regLambda);
         rs.regAngle = p.GetOneFloat("angle", 2);
         if (p.Has("radius") && !(rs.regRadius > 0)) Fail(ParamLoc(p, "radius", e.loc), "\"radius\" must be positive");
         if (!(rs.regLambda >= 0 && rs.regLambda <= 1)) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must be in [0, 1]");

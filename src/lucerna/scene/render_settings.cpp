@@ -140,7 +140,7 @@ const std::vector<SettingInfo> &RenderSettingInfos() {
         {"maxdepth", "maximum path depth (default: the scene's, else 5)", true},
         {"light-strategy", "direct-light techniques: mis, nee or bsdf (diagnosis; default mis)", true},
         {"reg-radius", "regpath: initial radius r0 in world units (default: 0.04 x the scene's diagonal)", true},
-        {"reg-lambda", "regpath: shrink exponent lambda, r_N = r0 N^-lambda (default 1/6)", true},
+        {"reg-lambda", "regpath: shrink exponent lambda, r_N = r0 N^-lambda (default 1/6; 1/8 in scenes with a collimated light)", true},
         {"reg-angle", "regpath: initial angle sigma0 in degrees for lights at infinity (default 2)", true},
         {"mnee", "regpath: manifold next-event estimation through refractive chains (true or false; default true)", true},
         {"seed", "random seed (default: the scene's Sampler \"seed\", else 0)", true},
