@@ -1,6 +1,7 @@
 // Lucerna: light sampling and emission for point, spot, goniometric, projection, distant, diffuse
-// area (constant or image), uniform and image infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
-// with shape sampling in shape_sampling.h and the power-based light selection in light_sampler.h.
+// area (constant or image), uniform and image infinite lights (host and device), after pbrt-v4's
+// lights.h/.cpp: SampleLi / PDF_Li / L / Le, with shape sampling in shape_sampling.h and the
+// power-based light selection in light_sampler.h.
 #pragma once
 
 #include "lucerna/lights/equal_area.h"
