@@ -769,7 +769,9 @@ TEST(Errors, CylinderRadius) {
     ExpectError("Shape \"sphere\"\nShape \"cylinder\"\n  \"float radius\" -1\n", 6, "cylinder radius must be positive");
 }
 TEST(Errors, UnknownLight) { ExpectError("LightSource \"laser\"\n", 4, "\"laser\""); }
-TEST(Errors, UnsupportedLight) { ExpectError("LightSource \"projection\"\n", 4, "\"projection\""); }
+TEST(Errors, UnsupportedLight) {
+    ExpectError("LightSource \"infinite\"\n  \"point3 portal\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ]\n", 5, "\"portal\"");
+}
 TEST(Errors, UnknownNamedSpectrum) {
     ExpectError("Material \"conductor\"\n  \"spectrum eta\" \"metal-Unobtainium-eta\"\nShape \"sphere\"\n", 5, "metal-Unobtainium-eta");
 }

@@ -271,19 +271,24 @@ LU_INLINE Transform InstanceTransform(const Instance &in) {
 
 // ---- Lights ----
 
-enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Goniometric, Collimated };
+enum class LightKind : uint8_t { Point, Spot, Distant, DiffuseArea, UniformInfinite, ImageInfinite, Goniometric, Collimated,
+                                 Projection };
 
 struct Light {
     LightKind kind = LightKind::Point;
-    Spectrum spectrum;           // I (point, spot, goniometric), L (distant, area, uniform infinite); image: unused
+    Spectrum spectrum;           // I (point, spot, goniometric), L (distant, area, uniform infinite); images: unused
     Float scale = 1;             // includes pbrt-v4's 1/SpectrumToPhotometric and `power` normalizations
-    Transform renderFromLight;   // point, spot, image infinite, goniometric (with pbrt-v4's y/z swap)
-    Vec3f position;              // point, spot, goniometric (render space)
+    Transform renderFromLight;   // point, spot, image infinite, goniometric (with pbrt-v4's y/z swap),
+                                 // projection (with pbrt-v4's y flip: the CTM times Scale(1, -1, 1))
+    Vec3f position;              // point, spot, goniometric, projection (render space)
     Vec3f direction;             // distant: direction the light travels *from* (wLight, towards the light)
     Float cosFalloffStart = 1, cosFalloffEnd = 0;  // spot
     uint32_t shape = NoIndex, primitive = 0;       // area light: the emitting shape and primitive
     bool twoSided = false;
-    uint32_t image = NoIndex;    // image infinite: RGB image (illuminant) in texels
+    // RGB image (illuminant RGB, wrap Clamp but for image infinite) in SceneView::images: image
+    // infinite (equal-area map), projection (the projected slide, nearest texel), diffuse area
+    // with "filename" (NoIndex: the spectrum; else bilinear at the surface (u, 1 - v)).
+    uint32_t image = NoIndex;
     uint32_t distribution = NoIndex;  // image infinite: index into SceneView::distributions2D
     Vec3f sceneCenter;           // distant / infinite: bounding sphere of the scene
     Float sceneRadius = 0;
@@ -302,6 +307,11 @@ struct Light {
     // E(y) = spectrum * scale * profile, profile uniform (beamWaist == 0) or gaussian
     // exp(-2 rho^2 / beamWaist^2) (1/e^2 radius beamWaist), 0 outside the disc.
     Float beamRadius = 0, beamWaist = 0;
+    // Projection (pbrt-v4's ProjectionLight): light-space +z is the axis; direction w projects to
+    // the screen point (w.x, w.y) / (w.z projectionTan) (projectionTan = tan(fov / 2)), inside the
+    // window [-projectionScreen, projectionScreen] (the shorter image side spans [-1, 1]).
+    Float projectionTan = 1;
+    Vec2f projectionScreen = Vec2f(1, 1);
 };
 
 // Piecewise-constant 2D distribution (for image lights), tables in SceneView::distData:

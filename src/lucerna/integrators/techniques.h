@@ -202,7 +202,7 @@ LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const 
                 WavelengthWeight(rL, pdfLightA, rU, pdfBsdfA, lambda);
         else if (strategy == LightStrategy::MIS)
             w = MneeWeight(pdfLightA, pdfBsdfA);
-        c = f * tp.weight * AreaLightL(light, scene, ch.y, ch.nY, Vec2f(0, 0), wy, lambda) * (G * w / pdfLightA);
+        c = f * tp.weight * AreaLightL(light, scene, ch.y, ch.nY, ls.uvLight, wy, lambda) * (G * w / pdfLightA);
     }
     if (!c.IsBlack()) ++st.mneeConnections;
     return c;

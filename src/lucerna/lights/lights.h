@@ -1,6 +1,7 @@
-// Lucerna: light sampling and emission for point, spot, goniometric, distant, diffuse area, uniform
-// and image infinite lights (host and device), after pbrt-v4's lights.h/.cpp: SampleLi / PDF_Li / L / Le,
-// with shape sampling in shape_sampling.h and the power-based light selection in light_sampler.h.
+// Lucerna: light sampling and emission for point, spot, goniometric, projection, distant, diffuse
+// area (constant or image), uniform and image infinite lights (host and device), after pbrt-v4's
+// lights.h/.cpp: SampleLi / PDF_Li / L / Le, with shape sampling in shape_sampling.h and the
+// power-based light selection in light_sampler.h.
 #pragma once
 
 #include "lucerna/lights/equal_area.h"
@@ -19,13 +20,14 @@ struct LightLiSample {
     Float pdf = 0;                 // solid angle at ctx.p (pdfW); 1 for delta lights
     Vec3f pLight;                  // the sampled light point (infinite and distant: ctx.p + 2 R wi)
     Vec3f nLight;                  // geometric normal at pLight (area lights), else (0,0,0)
+    Vec2f uvLight;                 // surface uv at pLight (area lights with an alpha or an image)
     Float distance = Infinity;     // shadow-ray length to pLight; Infinity for distant/infinite
     bool isDelta = false;
 };
 
 LU_INLINE bool IsDeltaLight(const Light &l) {
     return l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Distant ||
-           l.kind == LightKind::Goniometric;
+           l.kind == LightKind::Goniometric || l.kind == LightKind::Projection;
 }
 
 LU_INLINE bool IsInfiniteLight(const Light &l) {
@@ -77,12 +79,54 @@ LU_INLINE Float ProfileValue(const Light &l, const SceneView &s, Vec3f w) {
     return ProfileValueAt(s.images[l.profile], s.texels.ptr, EqualAreaSphereToSquare(w), l.profileVertices);
 }
 
+// ---- Projection light (pbrt-v4's ProjectionLight) ----
+
+// Texel (x, y) of an RGB(A) or one-channel image as RGB.
+LU_INLINE void ImageRGB(const SceneView &s, const ImageData &im, int x, int y, Float rgb[3]) {
+    const Float *t = s.texels.ptr + im.offset + (uint64_t(y) * im.width + x) * im.channels;
+    for (int c = 0; c < 3; ++c) rgb[c] = t[im.channels >= 3 ? c : 0];
+}
+
+// The image coordinates (st in [0,1]^2, st.y = 0 at the top row) that the light-space unit
+// direction w projects to; false behind the near plane (w.z < 1e-3, pbrt-v4's hither) or outside
+// the screen window (its edges belong to it, as pbrt-v4's Inside).
+LU_INLINE bool ProjectionImageST(const Light &l, Vec3f w, Vec2f *st) {
+    if (!(w.z >= Float(1e-3))) return false;
+    Float sx = w.x / (w.z * l.projectionTan), sy = w.y / (w.z * l.projectionTan);
+    Vec2f half = l.projectionScreen;
+    if (!(sx >= -half.x && sx <= half.x && sy >= -half.y && sy <= half.y)) return false;
+    *st = Vec2f((sx + half.x) / (2 * half.x), (sy + half.y) / (2 * half.y));
+    return true;
+}
+
+// Intensity of a projection light towards the light-space unit direction w: the nearest texel
+// (coordinates truncated and clamped, pbrt-v4's LookupNearestChannel) as an RGB illuminant
+// spectrum, times scale; 0 outside the frustum.
+LU_INLINE SampledSpectrum ProjectionI(const Light &l, const SceneView &s, Vec3f w, const SampledWavelengths &lambda) {
+    Vec2f st;
+    if (!ProjectionImageST(l, w, &st)) return SampledSpectrum(0);
+    const ImageData &im = s.images[l.image];
+    int x = Clamp(int(st.x * Float(im.width)), 0, int(im.width) - 1);
+    int y = Clamp(int(st.y * Float(im.height)), 0, int(im.height) - 1);
+    Float rgb[3];
+    ImageRGB(s, im, x, y, rgb);
+    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+}
+
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
-// emit only on the side n points to.
-LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f /*p*/, Vec3f n, Vec2f /*uv*/, Vec3f w,
+// emit only on the side n points to. With an image (Light::image): pbrt-v4's bilinear lookup at
+// (u, 1 - v) (the image's top row at v = 1), clamped at the edges, as an RGB illuminant spectrum.
+LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f /*p*/, Vec3f n, Vec2f uv, Vec3f w,
                                      const SampledWavelengths &lambda) {
     if (l.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
     if (!l.twoSided && Dot(n, w) < 0) return SampledSpectrum(0);
+    if (l.image != NoIndex) {
+        const ImageData &im = s.images[l.image];
+        Vec2f st(uv.x, 1 - uv.y);
+        Float rgb[3];
+        for (int c = 0; c < 3; ++c) rgb[c] = ImageBilerp(im, s, st, im.channels >= 3 ? c : 0);
+        return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+    }
     return SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
 }
 
@@ -104,12 +148,6 @@ LU_INLINE bool AreaLightAlphaMasked(const Light &l, const SceneView &s, Vec3f p,
 }
 
 // ---- Image infinite light ----
-
-// Texel (x, y) of an RGB(A) or one-channel image as RGB.
-LU_INLINE void ImageRGB(const SceneView &s, const ImageData &im, int x, int y, Float rgb[3]) {
-    const Float *t = s.texels.ptr + im.offset + (uint64_t(y) * im.width + x) * im.channels;
-    for (int c = 0; c < 3; ++c) rgb[c] = t[im.channels >= 3 ? c : 0];
-}
 
 // Emitted radiance of an image infinite light at equal-area image coordinates uv (nearest texel,
 // octahedral wrap), as pbrt-v4's ImageInfiniteLight::ImageLe.
@@ -152,18 +190,24 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     // through a stack temporary whose narrow stores stall the wide reloads).
     ls->L = SampledSpectrum(0);
     ls->wi = ls->pLight = ls->nLight = Vec3f(0, 0, 0);
+    ls->uvLight = Vec2f(0, 0);
     ls->pdf = 0;
     ls->distance = Infinity;
     ls->isDelta = false;
     switch (l.kind) {
     case LightKind::Point:
     case LightKind::Spot:
-    case LightKind::Goniometric: {
+    case LightKind::Goniometric:
+    case LightKind::Projection: {
         Vec3f d = l.position - ctx.p;
         Float d2 = LengthSquared(d);
         if (d2 == 0) return false;
         ls->wi = d / std::sqrt(d2);
-        SampledSpectrum I = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
+        SampledSpectrum I;
+        if (l.kind == LightKind::Projection)
+            I = ProjectionI(l, s, Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi)), lambda);
+        else
+            I = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
         if (l.kind == LightKind::Spot) {
             Vec3f wLight = Normalize(l.renderFromLight.Inverted().ApplyVector(-ls->wi));
             I *= SpotFalloff(l, wLight);
@@ -190,7 +234,8 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
     case LightKind::DiffuseArea: {
         const Shape &shape = s.shapes[l.shape];
         ShapeSample ss;
-        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss, /*wantUV=*/shape.alpha != NoIndex) || !(ss.pdf > 0))
+        if (!SampleShape(s, shape, l.primitive, ctx, u, &ss, /*wantUV=*/shape.alpha != NoIndex || l.image != NoIndex) ||
+            !(ss.pdf > 0))
             return false;
         Vec3f d = ss.p - ctx.p;
         Float dist = Length(d);
@@ -202,6 +247,7 @@ LU_INLINE bool SampleLi(const Light &l, const SceneView &s, const LightSampleCon
         ls->pdf = ss.pdf;
         ls->pLight = ss.p;
         ls->nLight = ss.n;
+        ls->uvLight = ss.uv;
         ls->distance = dist;
         return true;
     }

@@ -510,7 +510,8 @@ LU_INLINE bool SampleCylinder(const Cylinder &cy, const LightSampleContext &ctx,
 
 // Samples primitive `prim` of `shape` from ctx. Returns false (and no sample) on failure.
 // wantUV = false leaves ss->uv unset where computing it costs (the cone-sampled sphere); the
-// area lights' emission depends on uv only through an alpha texture (SampleLi asks for it then).
+// area lights' emission depends on uv only through an alpha texture or an image (SampleLi asks
+// for it then).
 LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim, const LightSampleContext &ctx,
                            Vec2f u, ShapeSample *ss, bool wantUV = true) {
     switch (shape.kind) {

@@ -81,6 +81,8 @@ struct AreaLightParams {
     Float scale = 1;      // "scale" / SpectrumToPhotometric(L)
     Float power = -1;     // "power" (<= 0: none)
     bool twoSided = false;
+    uint32_t image = NoIndex;   // "filename": the RGB image in scene.images (Light::image)
+    double imageLuminance = 1;  // the image's mean luminance (the power normalization's k_e factor)
 };
 
 struct BuildContext {

@@ -1,4 +1,5 @@
-// Lucerna scene builder: light sources (point, spot, goniometric, distant, infinite, diffuse area),
+// Lucerna scene builder: light sources (point, spot, goniometric, projection, distant, infinite,
+// diffuse area with a spectrum or an image),
 // after pbrt-v4's lights.cpp Create() functions: "scale" divided by SpectrumToPhotometric of the
 // emission, "power" / "illuminance" normalizations, IES profiles, the power-proportional light sampler.
 #include <algorithm>
@@ -46,6 +47,22 @@ bool IsFiniteMatrix(const Matrix4 &m) {
 }
 bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// The color space's LuminanceVector: Y of each primary.
+void LuminanceVector(Float lum[3]) {
+    for (int c = 0; c < 3; ++c) lum[c] = RGBToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
+}
+
+// The RGB image named by string parameter "filename" of an image light (pbrt-v4 refuses images
+// without R, G and B; LoadImage refuses NaN and infinite texels), at that parameter's location.
+LoadedImage LoadLightImage(BuildContext &ctx, const ParameterDictionary &p, const FileLoc &loc, const std::string &owner) {
+    std::string filename = p.GetOneString("filename", "");
+    FileLoc at = ParamLoc(p, "filename", loc);
+    LoadedImage img = LoadImage(ctx, ResolvePath(ctx.desc.baseDirectory, filename), false, at);
+    if (img.channels < 3)
+        Fail(at, Quoted(filename) + ": image provided to " + owner + " must have R, G, and B channels");
+    return img;
+}
+
 }  // namespace
 
 // ---- Area lights ----
@@ -59,13 +76,28 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
     std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
     Float scale = GetScale(p, e.loc, "AreaLightSource " + Quoted(e.name));
     a.twoSided = p.GetOneBool("twosided", false);
-    if (!p.GetOneString("filename", "").empty())
-        FailUnsupported(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\" with an image (\"filename\")");
     a.L = L ? *L : IlluminantSpectrum();
+    if (p.Has("filename")) {
+        // pbrt-v4: the image's RGB as illuminant spectra; scaled as the color space's illuminant.
+        if (L) Fail(ParamLoc(p, "filename", e.loc), "both \"L\" and \"filename\" specified for AreaLightSource \"diffuse\"");
+        if (p.GetOneString("filename", "").empty())
+            Fail(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\": \"filename\" is empty");
+        LoadedImage img = LoadLightImage(ctx, p, e.loc, "AreaLightSource \"diffuse\"");
+        Float lum[3];
+        LuminanceVector(lum);
+        const Float *t = ctx.scene.texels.data() + img.offset;
+        double sum = 0;
+        for (size_t i = 0; i < size_t(img.width) * img.height; ++i)
+            for (int c = 0; c < 3; ++c) sum += double(t[i * img.channels + c]) * lum[c];
+        a.imageLuminance = sum / (double(img.width) * img.height);
+        a.image = AddImageData(ctx, img, WrapMode::Clamp);
+    }
     // Scale so that the radiance is equivalent to 1 nit.
     Float photometric = ctx.Registry().ToPhotometric(a.L);
     a.scale = photometric > 0 ? scale / photometric : scale;
     a.power = GetPhotometric(p, "power", e.loc, "AreaLightSource " + Quoted(e.name));
+    if (a.power > 0 && a.image != NoIndex && !(a.imageLuminance > 0))
+        Fail(ParamLoc(p, "power", e.loc), "AreaLightSource \"diffuse\": \"power\" cannot be met: the image's luminance is zero");
     p.ReportUnused(ctx.diag, "AreaLightSource " + Quoted(e.name));
     return ctx.areaLights[index] = a;
 }
@@ -74,8 +106,8 @@ Float AreaLightPrimitiveScale(const AreaLightParams &a, Float area) {
     Float scale = a.scale;
     if (a.power > 0) {
         // pbrt-v4: k_e = (twoSided ? 2 : 1) * area * pi (the spectrum is already photometrically
-        // normalized; an RGB's own luminance is not accounted for).
-        Float k_e = (a.twoSided ? 2 : 1) * area * Pi;
+        // normalized; an RGB's own luminance is not accounted for), times an image's mean luminance.
+        Float k_e = Float((a.twoSided ? 2 : 1) * area * Pi * a.imageLuminance);
         if (k_e > 0) scale *= a.power / k_e;
     }
     return scale;
@@ -128,8 +160,8 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     const Float *texels = ctx.scene.texels.data() + img.offset;
     if (E_v > 0) {
         // pbrt-v4: upper-hemisphere illuminance of the map (sRGB luminance weights), times 2 pi / N.
-        Float lum[3];  // the color space's LuminanceVector: Y of each primary
-        for (int c = 0; c < 3; ++c) lum[c] = RGBToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
+        Float lum[3];
+        LuminanceVector(lum);
         double illuminance = 0;
         for (uint32_t y = 0; y < img.height; ++y) {
             Float v = (Float(y) + 0.5f) / Float(img.height);
@@ -264,6 +296,48 @@ void BuildGoniometric(BuildContext &ctx, const LightEntity &e, Light &l, std::st
     l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
 }
 
+// LightSource "projection" (pbrt-v4's ProjectionLight::Create): the image "filename" projected from
+// the origin down +z through a perspective frustum of "fov" degrees across the image's shorter
+// side; +y of the CTM's space is the image's top (pbrt-v4 flips y).
+void BuildProjection(BuildContext &ctx, const LightEntity &e, Light &l) {
+    const ParameterDictionary &p = e.params;
+    const std::string owner = "LightSource \"projection\"";
+    Float scale = GetScale(p, e.loc, owner);
+    Float phi_v = GetPhotometric(p, "power", e.loc, owner);
+    double fov = p.GetOneFloat("fov", 90);
+    if (!(fov > 0 && fov < 180))
+        Fail(ParamLoc(p, "fov", e.loc), owner + ": \"fov\" must be in (0, 180) degrees (got " + FormatNumber(fov) + ")");
+    if (p.GetOneString("filename", "").empty())
+        Fail(p.Has("filename") ? ParamLoc(p, "filename", e.loc) : e.loc, "must provide \"filename\" to \"projection\" light source");
+    if (!IsFiniteMatrix(e.renderFromObject.mInv))
+        Fail(e.loc, owner + ": the transformation is not invertible: the light's directions are undefined");
+    LoadedImage img = LoadLightImage(ctx, p, e.loc, "\"projection\" light");
+    l.kind = LightKind::Projection;
+    l.spectrum = IlluminantSpectrum();
+    l.scale = scale / Photometric(ctx, IlluminantSpectrum());
+    l.image = AddImageData(ctx, img, WrapMode::Clamp);
+    Float aspect = Float(img.width) / Float(img.height);
+    l.projectionScreen = aspect > 1 ? Vec2f(aspect, 1) : Vec2f(1, 1 / aspect);
+    l.projectionTan = Float(std::tan(Radians(Float(fov)) / 2));
+    if (phi_v > 0) {
+        // pbrt-v4: k_e = the image's luminance integrated over the solid angle of its texels.
+        Float lum[3];
+        LuminanceVector(lum);
+        const ImageData &im = ctx.scene.images[l.image];
+        const Float *t = ctx.scene.texels.data() + img.offset;
+        double k_e = 0;
+        for (uint32_t y = 0; y < img.height; ++y)
+            for (uint32_t x = 0; x < img.width; ++x) {
+                const Float *px = t + (size_t(y) * img.width + x) * img.channels;
+                k_e += (px[0] * lum[0] + px[1] * lum[1] + px[2] * lum[2]) * ProjectionTexelSolidAngle(l, im, x, y);
+            }
+        if (!(k_e > 0)) Fail(ParamLoc(p, "power", e.loc), owner + ": \"power\" cannot be met: the image's luminance is zero");
+        l.scale *= Float(phi_v / k_e);
+    }
+    l.renderFromLight = e.renderFromObject * FromColumns(Vec3f(1, 0, 0), Vec3f(0, -1, 0), Vec3f(0, 0, 1));
+    l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
+}
+
 }  // namespace
 
 void BuildLights(BuildContext &ctx) {
@@ -354,12 +428,13 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "goniometric") {
             BuildGoniometric(ctx, e, l, &profile);
         } else if (e.name == "projection") {
-            FailUnsupported(e.loc, "LightSource " + Quoted(e.name));
+            BuildProjection(ctx, e, l);
         } else {
             Fail(e.loc, "unknown light type " + Quoted(e.name));
         }
         // A singular or projective CTM can leave a light without a position or direction.
-        if ((l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric) &&
+        if ((l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric ||
+             l.kind == LightKind::Projection) &&
             !IsFinite3(l.position))
             Fail(e.loc, owner + ": the transformation sends the light's position to infinity");
         if ((l.kind == LightKind::Spot || l.kind == LightKind::Distant) && !IsFinite3(l.direction))
@@ -392,7 +467,8 @@ Float MaxCornerDistance(const Transform &t, const Vec3f &c, const Vec3f &pMin, c
 // assumes no scale), the other branches at transformed object points: both are covered.
 void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Float *radius) {
     *radius = -1;
-    if (l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric) {
+    if (l.kind == LightKind::Point || l.kind == LightKind::Spot || l.kind == LightKind::Goniometric ||
+        l.kind == LightKind::Projection) {
         *center = l.position;
         *radius = 0;
         return;

@@ -70,10 +70,11 @@ uint32_t AddAreaLights(BuildContext &ctx, const Placement &pl, uint32_t shapeInd
         l.shape = shapeIndex;
         l.primitive = uint32_t(i);
         l.twoSided = pl.areaLight->twoSided;
+        l.image = pl.areaLight->image;
         s.SetOrigin(s.lightOrigin, s.lights.size(), origin);
         s.lights.push_back(l);
     }
-    s.stats.lightsByType["diffuse area"] += int(areas.size());
+    s.stats.lightsByType[pl.areaLight->image != NoIndex ? "diffuse area (image)" : "diffuse area"] += int(areas.size());
     return first;
 }
 

@@ -1,4 +1,5 @@
-// Lucerna (host): light power (pbrt-v4 Light::Phi; goniometric and IES profiles included), the
+// Lucerna (host): light power (pbrt-v4 Light::Phi; goniometric and IES profiles, projection and
+// image area lights included), the
 // power light-selection CDF of lights/light_sampler.h (PowerLightSampler) and the image infinite
 // light's distributions.
 #pragma once
@@ -34,6 +35,33 @@ inline double ProfileIntegral(const ImageData &im, const Float *texels, bool ver
     return 4 * Pi * sum / (double(n) * n);
 }
 
+// Projection light: the change of variables from the screen window (at distance 1 along the axis)
+// to solid angle at the center of texel (x, y), d omega / dA = cos^3 theta (pbrt-v4's dwdA), times
+// the texel's area A / N there: the solid angle the texel subtends, to first order.
+inline double ProjectionTexelSolidAngle(const Light &l, const ImageData &im, uint32_t x, uint32_t y) {
+    double t = l.projectionTan;
+    double sx = (2 * (double(x) + 0.5) / im.width - 1) * l.projectionScreen.x;
+    double sy = (2 * (double(y) + 0.5) / im.height - 1) * l.projectionScreen.y;
+    double cosTheta = 1 / std::sqrt(1 + t * t * (sx * sx + sy * sy));
+    double area = 4 * t * t * double(l.projectionScreen.x) * double(l.projectionScreen.y);
+    return cosTheta * cosTheta * cosTheta * area / (double(im.width) * im.height);
+}
+
+// The mean over an RGB image's texels of their RGB illuminant spectra at lambda (pbrt-v4's
+// DiffuseAreaLight::Phi); weight (optional): a factor per texel (x, y).
+template <typename Weight>
+inline SampledSpectrum ImageSpectrumSum(const SceneView &s, const ImageData &im, const SampledWavelengths &lambda,
+                                        Weight weight) {
+    SampledSpectrum sum(0);
+    for (uint32_t y = 0; y < im.height; ++y)
+        for (uint32_t x = 0; x < im.width; ++x) {
+            Float rgb[3];
+            ImageRGB(s, im, int(x), int(y), rgb);
+            sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * Float(weight(x, y));
+        }
+    return sum;
+}
+
 // pbrt-v4's Light::Phi(lambda): emitted power at the sampled wavelengths.
 inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const SampledWavelengths &lambda) {
     SampledSpectrum spec = SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
@@ -46,18 +74,24 @@ inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const Sample
     case LightKind::Goniometric:
         return spec * Float(ProfileIntegral(s.images[l.profile], s.texels.ptr, l.profileVertices));
     case LightKind::Distant: return spec * (Pi * Sqr(l.sceneRadius));
-    case LightKind::DiffuseArea:
+    case LightKind::DiffuseArea: {
+        if (l.image != NoIndex) {   // the image's mean spectrum (pbrt-v4: no distortion of the uv mapping)
+            const ImageData &im = s.images[l.image];
+            spec = ImageSpectrumSum(s, im, lambda, [](uint32_t, uint32_t) { return 1.0; }) *
+                   (l.scale / Float(uint64_t(im.width) * im.height));
+        }
         return spec * (Pi * (l.twoSided ? 2 : 1) * ShapeArea(s, s.shapes[l.shape], l.primitive));
+    }
+    case LightKind::Projection: {
+        const ImageData &im = s.images[l.image];
+        return ImageSpectrumSum(s, im, lambda, [&](uint32_t x, uint32_t y) {
+                   return ProjectionTexelSolidAngle(l, im, x, y);
+               }) * l.scale;
+    }
     case LightKind::UniformInfinite: return spec * (4 * Pi * Pi * Sqr(l.sceneRadius));
     case LightKind::ImageInfinite: {
         const ImageData &im = s.images[l.image];
-        SampledSpectrum sum(0);
-        for (uint32_t y = 0; y < im.height; ++y)
-            for (uint32_t x = 0; x < im.width; ++x) {
-                Float rgb[3];
-                ImageRGB(s, im, int(x), int(y), rgb);
-                sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra);
-            }
+        SampledSpectrum sum = ImageSpectrumSum(s, im, lambda, [](uint32_t, uint32_t) { return 1.0; });
         return sum * (4 * Pi * Pi * Sqr(l.sceneRadius) * l.scale / Float(uint64_t(im.width) * im.height));
     }
     case LightKind::Collimated: return spec * BeamProfileIntegral(l.beamRadius, l.beamWaist);
