@@ -120,7 +120,7 @@ LU_INLINE SampledSpectrum ImageInfiniteLe(const Light &l, const SceneView &s, Ve
     WrapOctahedral(&x, &y, int(im.width), int(im.height));
     Float rgb[3];
     ImageRGB(s, im, x, y, rgb);
-    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra) * l.scale;
 }
 
 // Radiance arriving along an escaped ray with unit direction dir, from an infinite light.

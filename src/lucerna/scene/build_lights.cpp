@@ -61,7 +61,7 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
     a.twoSided = p.GetOneBool("twosided", false);
     if (!p.GetOneString("filename", "").empty())
         FailUnsupported(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\" with an image (\"filename\")");
-    a.L = L ? *L : IlluminantSpectrum();
+    a.L = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
     // Scale so that the radiance is equivalent to 1 nit.
     Float photometric = ctx.Registry().ToPhotometric(a.L);
     a.scale = photometric > 0 ? scale / photometric : scale;
@@ -106,7 +106,7 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (filename.empty()) {
         // Uniform: "L", or the color space's illuminant.
         l.kind = LightKind::UniformInfinite;
-        l.spectrum = L ? *L : IlluminantSpectrum();
+        l.spectrum = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
         l.scale = scale / Photometric(ctx, l.spectrum);
         if (E_v > 0) l.scale *= E_v / Pi;  // illuminance of uniform emission on an upward-facing patch
         return;
@@ -123,13 +123,14 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (!IsFiniteMatrix(e.renderFromObject.mInv))
         Fail(e.loc, "the transformation of this \"infinite\" light is not invertible: its directions are undefined");
     l.kind = LightKind::ImageInfinite;
-    l.spectrum = IlluminantSpectrum();
-    l.scale = scale / Photometric(ctx, IlluminantSpectrum());
+    l.spectrum = IlluminantSpectrum(ctx, img.colorSpace);  // the image file's color space (pbrt-v4)
+    l.scale = scale / Photometric(ctx, l.spectrum);
     const Float *texels = ctx.scene.texels.data() + img.offset;
     if (E_v > 0) {
-        // pbrt-v4: upper-hemisphere illuminance of the map (sRGB luminance weights), times 2 pi / N.
+        // pbrt-v4: upper-hemisphere illuminance of the map (its color space's luminance weights), times 2 pi / N.
         Float lum[3];  // the color space's LuminanceVector: Y of each primary
-        for (int c = 0; c < 3; ++c) lum[c] = RGBToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
+        const RGBColorSpace &imgSpace = GetRGBColorSpace(ColorSpaceId(img.colorSpace));
+        for (int c = 0; c < 3; ++c) lum[c] = imgSpace.ToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
         double illuminance = 0;
         for (uint32_t y = 0; y < img.height; ++y) {
             Float v = (Float(y) + 0.5f) / Float(img.height);
@@ -250,7 +251,7 @@ void BuildGoniometric(BuildContext &ctx, const LightEntity &e, Light &l, std::st
     if (!IsFiniteMatrix(e.renderFromObject.mInv))
         Fail(e.loc, owner + ": the transformation is not invertible: the light's directions are undefined");
     l.kind = LightKind::Goniometric;
-    l.spectrum = I ? *I : IlluminantSpectrum();
+    l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
     l.scale = scale / Photometric(ctx, l.spectrum);
     if (IsIESFile(filename)) {
         l.profile = IESProfileTable(ctx, e, "filename", description);
@@ -279,7 +280,7 @@ void BuildLights(BuildContext &ctx) {
         if (e.name == "point") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Point;
-            l.spectrum = I ? *I : IlluminantSpectrum();
+            l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
             l.scale = GetScale(p, e.loc, owner) / Photometric(ctx, l.spectrum);
             Float phi_v = GetPhotometric(p, "power", e.loc, owner);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
@@ -302,7 +303,7 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "spot") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Spot;
-            l.spectrum = I ? *I : IlluminantSpectrum();
+            l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
             Float scale = GetScale(p, e.loc, owner);
             Float coneAngle = Float(p.GetOneFloat("coneangle", 30));
             Float coneDelta = Float(p.GetOneFloat("conedeltaangle", 5));
@@ -335,7 +336,7 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "distant") {
             std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
             l.kind = LightKind::Distant;
-            l.spectrum = L ? *L : IlluminantSpectrum();
+            l.spectrum = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
             Float scale = GetScale(p, e.loc, owner);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));

@@ -56,7 +56,7 @@ inline SampledSpectrum LightPhi(const Light &l, const SceneView &s, const Sample
             for (uint32_t x = 0; x < im.width; ++x) {
                 Float rgb[3];
                 ImageRGB(s, im, int(x), int(y), rgb);
-                sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra);
+                sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra);
             }
         return sum * (4 * Pi * Pi * Sqr(l.sceneRadius) * l.scale / Float(uint64_t(im.width) * im.height));
     }
