@@ -12,7 +12,7 @@ namespace lu::test {
 namespace {
 
 // Camera and film (after `head`, e.g. a ColorSpace), then the world: a white sky and, in
-// `world`, quads. The image is 32 x 32; x < 0 is the left half.
+// `world`, quads. The image is 32 x 32.
 std::string Scene(const std::string &head, const std::string &afterFilm, const std::string &world) {
     return head +
            "LookAt 0 0 5  0 0 0  0 1 0\n"
@@ -74,10 +74,12 @@ TEST(ColorSpaceRender, Aces2065FurnaceGivesTheAlbedo) {
 
 // Two color spaces in one scene: the film in Rec. 2020, the world in sRGB; the left quad's
 // block switches to Rec. 2020 and AttributeEnd restores sRGB for the right quad. Both have the
-// same numbers: the left half shows them, the right half their sRGB color in Rec. 2020.
+// same numbers: the left half shows them, the right half their sRGB color in Rec. 2020 (a
+// builder that did not restore the space at AttributeEnd would make both halves equal).
 TEST(ColorSpaceRender, AttributeBlocksMixColorSpaces) {
-    const std::string world = "AttributeBegin\nColorSpace \"rec2020\"\n" + Quad(-3, 0, "0.3 0.5 0.4") +
-                              "AttributeEnd\n" + Quad(0, 3, "0.3 0.5 0.4");
+    // (pbrt-v4's camera space is left-handed: world x > 0 is the image's left half here.)
+    const std::string world = "AttributeBegin\nColorSpace \"rec2020\"\n" + Quad(0, 3, "0.3 0.5 0.4") +
+                              "AttributeEnd\n" + Quad(-3, 0, "0.3 0.5 0.4");
     auto scene = LoadSceneText("cs_mixed", Scene("ColorSpace \"rec2020\"\n", "ColorSpace \"srgb\"\n", world));
     auto r = RenderScene(*scene, 16, 1);
     RGB left = MeanRGB(r.image, 2, 14), right = MeanRGB(r.image, 18, 30);

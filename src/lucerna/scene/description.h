@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lucerna/scene/error.h"
+#include "lucerna/spectrum/color_space.h"
 #include "lucerna/util/vecmath.h"
 
 namespace lu {

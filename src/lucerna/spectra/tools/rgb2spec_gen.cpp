@@ -1,6 +1,6 @@
 // Lucerna build tool: fits the Jakob & Hanika 2019 RGB -> sigmoid-polynomial table for one of
 // pbrt-v4's RGB color spaces (srgb, dci-p3, rec2020, aces2065-1; spectra/color_space_data.h)
-// (Gauss-Newton in CIELAB with an analytic Jacobian, the setup of pbrt-v4's rgb2spec_opt: 5 nm CIE 1931 data, D65, Simpson
+// (Gauss-Newton in CIELAB with an analytic Jacobian, the setup of pbrt-v4's rgb2spec_opt: 5 nm CIE 1931 data, the space's illuminant, Simpson
 // 3/8 quadrature on a 5/3 nm grid, z nodes smoothstep(smoothstep(k / (res - 1)))) and writes it
 // as a raw binary: u32 magic 'LUR2', u32 res, u32 0, u32 0, f32 zNodes[res],
 // f32 coeffs[3][res][res][res][3] ([max component][z][y][x][c0 c1 c2], polynomial in nm).
