@@ -196,6 +196,14 @@ std::string Lower(std::string s) {
 
 void WriteOutputs(const Prepared &prep, const FilmAccumulator &film, const RenderOutcome &out, const std::string &path, bool png) {
     Image img = film.Resolve(prep.scene->View().film);
+    // pbrt-v4's WriteEXR: chromaticities for every film color space but sRGB (PNG: the film's
+    // RGB with the sRGB curve, no conversion, as pbrt-v4's WritePNG).
+    if (prep.scene->filmColorSpace != ColorSpaceId::SRGB) {
+        const RGBColorSpace &cs = GetRGBColorSpace(prep.scene->filmColorSpace);
+        img.hasChromaticities = true;
+        img.chromaticities = {float(cs.r[0]), float(cs.r[1]), float(cs.g[0]), float(cs.g[1]),
+                              float(cs.b[0]), float(cs.b[1]), float(cs.w[0]), float(cs.w[1])};
+    }
     ImageMetadata meta;
     meta["lucerna.spp"] = std::to_string(film.passes);
     meta["lucerna.integrator"] = IntegratorName(prep.settings.integrator);

@@ -43,7 +43,7 @@ struct TestScene : HostScene {
         s.rgbToSpecCoeffs = SpanOf(rgbCoeffs);
         s.rgbToSpecZNodes = SpanOf(zNodes);
         s.rgbToSpecRes = rgbRes;
-        s.illuminantTable = 0;
+        s.illuminantTables[0] = 0;
         return s;
     }
 
@@ -991,7 +991,7 @@ TEST(RGBIlluminant, MatchesRegistryWithTheSRGBTable) {
     s.rgbToSpecZNodes = {tab.zNodes, tab.res};
     s.rgbToSpecRes = tab.res;
     s.spectra = reg.Tables();
-    s.illuminantTable = TableD65;
+    s.illuminantTables[0] = TableD65;
     SampledWavelengths lambda = TestLambda();
     const Float rgbs[][3] = {{0.8f, 0.3f, 0.1f}, {0.05f, 0.2f, 1.7f}, {2, 2, 2}, {0.3f, -0.1f, 0.5f}};
     for (const auto &rgb : rgbs) {

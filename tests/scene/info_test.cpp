@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "lucerna/image/image.h"
 #include "lucerna/scene/builder.h"
+#include "lucerna/spectra/registry.h"
 #include "support/test_support.h"
 
 namespace lu {
@@ -122,6 +124,41 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     std::string truncated;
     EXPECT_EQ(RunInfo(cut, &truncated), 2) << truncated;
     EXPECT_TRUE(Contains(truncated, cut + ": error: truncated gzip data")) << truncated;
+}
+
+// The film's color space: `lucerna info` names it, and the EXR carries its chromaticities
+// (pbrt-v4 writes them for every space but sRGB, whose files have none).
+TEST(InfoCommand, FilmColorSpaceInInfoAndExrHeader) {
+    std::string dir = test::TempDir("info_colorspace");
+    for (const char *space : {"dci-p3", "srgb"}) {
+        SCOPED_TRACE(space);
+        std::string scene = dir + "/" + space + ".pbrt";
+        std::ofstream(scene) << "ColorSpace \"" << space << "\"\nFilm \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\n"
+                             << "Camera \"perspective\"\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n";
+        std::string out;
+        EXPECT_EQ(RunInfo(scene, &out), 0) << out;
+        EXPECT_TRUE(Contains(out, std::string("color space: ") + space)) << out;
+        std::string exr = dir + "/" + space + ".exr";
+        test::ProcessResult r = test::RunProcess({test::LucernaBinary(), "render", scene, "-o", exr, "--spp", "16"});
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        Image img = ReadImage(exr);
+        if (std::string(space) == "srgb") {
+            EXPECT_FALSE(img.hasChromaticities);
+            continue;
+        }
+        ASSERT_TRUE(img.hasChromaticities);
+        const RGBColorSpace &cs = GetRGBColorSpace(ColorSpaceId::DCI_P3);
+        const double want[8] = {0.68, 0.32, 0.265, 0.690, 0.15, 0.06, cs.w[0], cs.w[1]};
+        for (int i = 0; i < 8; ++i) EXPECT_NEAR(img.chromaticities[i], want[i], 1e-6) << i;
+        EXPECT_NEAR(cs.w[0], 0.3127, 2e-4);  // D65
+        // The sky is the film's white: (1, 1, 1) in DCI-P3 (mean over the 16 pixels).
+        for (int c = 0; c < 3; ++c) {
+            double m = 0;
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 4; ++x) m += img.At(x, y, c) / 16;
+            EXPECT_NEAR(m, 1.0, 0.05) << c;
+        }
+    }
 }
 
 }  // namespace

@@ -350,28 +350,27 @@ TEST(ParseErrors, MiscellaneousDirectiveErrors) {
               "\"Transform\" needs exactly 16 numbers; expected ']' but got \"1\"");
 }
 
-TEST(ParseErrors, ColorSpaceRefusalIsLocated) {
-    // The scene builder refuses color spaces other than srgb at the ColorSpace directive.
-    std::string dir = test::TempDir("err_colorspace");
-    WriteFile(dir + "/cs.pbrt", "Film \"rgb\"\n  ColorSpace \"rec2020\"\nCamera \"perspective\"\nWorldBegin\n");
+TEST(ParseErrors, ColorSpaceIsGraphicsState) {
+    // ColorSpace sets the graphics state's color space: parameters and entities written after it
+    // carry it, AttributeEnd restores the enclosing one, Attribute values keep theirs.
     Diagnostics diag;
     diag.quiet = true;
-    SceneDescription d = ParseSceneFile(dir + "/cs.pbrt", diag);
-    EXPECT_EQ(d.colorSpace, "rec2020");
-    EXPECT_EQ(d.colorSpaceLoc.ToString(), dir + "/cs.pbrt:2:3");
-    try {
-        BuildScene(d, diag, BuildOptions{});
-        FAIL() << "rec2020 was accepted";
-    } catch (SceneError &e) {
-        EXPECT_EQ(e.Format(), dir + "/cs.pbrt:2:3: error: ColorSpace \"rec2020\" is not supported\n"
-                                    "  ColorSpace \"rec2020\"\n  ^");
-    }
-    // A later ColorSpace that is not adopted (one per scene) leaves the first one's location.
-    SceneDescription two = ParseSceneString("ColorSpace \"dci-p3\"\nColorSpace \"rec2020\"\n", "two.pbrt", diag);
-    EXPECT_EQ(two.colorSpace, "dci-p3");
-    EXPECT_EQ(two.colorSpaceLoc.line, 1);
-    // The default has no location.
-    EXPECT_FALSE(ParseSceneString("WorldBegin\n", "none.pbrt", diag).colorSpaceLoc.file);
+    SceneDescription d = ParseSceneString(
+        "ColorSpace \"rec2020\"\nFilm \"rgb\"\nColorSpace \"srgb\"\nWorldBegin\n"
+        "AttributeBegin\nColorSpace \"aces2065-1\"\nAttribute \"shape\" \"rgb x\" [ 1 1 1 ]\nColorSpace \"dci-p3\"\n"
+        "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\nShape \"sphere\"\nAttributeEnd\n"
+        "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n",
+        "cs.pbrt", diag);
+    EXPECT_EQ(d.film.colorSpace, uint8_t(ColorSpaceId::Rec2020));
+    ASSERT_EQ(d.materials.size(), 2u);
+    EXPECT_EQ(d.materials[0].colorSpace, uint8_t(ColorSpaceId::DCI_P3));
+    EXPECT_EQ(d.materials[0].params.All()[0].colorSpace, uint8_t(ColorSpaceId::DCI_P3));
+    EXPECT_EQ(d.materials[1].colorSpace, uint8_t(ColorSpaceId::SRGB));  // restored by AttributeEnd
+    ASSERT_EQ(d.shapes.size(), 1u);
+    const ParsedParameter *x = d.shapes[0].params.Find("x");
+    ASSERT_NE(x, nullptr);
+    EXPECT_EQ(x->colorSpace, uint8_t(ColorSpaceId::ACES2065_1));  // as at the Attribute directive
+    EXPECT_EQ(d.shapes[0].colorSpace, uint8_t(ColorSpaceId::DCI_P3));
 }
 
 TEST(ParseErrors, SingularShapeTransformWarns) {

@@ -220,7 +220,7 @@ TEST(Parser, OptionsColorSpaceAndSceneWideEntities) {
         "WorldBegin\n");
     ASSERT_EQ(d.options.size(), 1u);
     EXPECT_EQ(d.options[0].first, "disablepixeljitter true");
-    EXPECT_EQ(d.colorSpace, "rec2020");
+    EXPECT_EQ(d.film.colorSpace, uint8_t(ColorSpaceId::Rec2020));  // the ColorSpace in effect at Film
     EXPECT_EQ(d.film.name, "rgb");
     EXPECT_EQ(d.film.params.GetOneInt("xresolution", 0), 64);
     EXPECT_EQ(d.sampler.name, "zsobol");

@@ -3,6 +3,7 @@
 // from a parsed pbrt-v4 scene; one upload per array moves it to the GPU.
 #pragma once
 
+#include "lucerna/spectrum/color_space.h"
 #include "lucerna/spectrum/spectrum.h"
 #include "lucerna/util/vecmath.h"
 
@@ -27,6 +28,9 @@ struct ImageData {
     uint32_t width = 0, height = 0, channels = 0;
     uint64_t offset = 0;
     WrapMode wrap = WrapMode::Repeat;
+    // The color space of the texels' RGB (pbrt-v4: the file's, from EXR chromaticities; sRGB
+    // otherwise), a ColorSpaceId: selects the RGB -> spectrum table and the illuminant.
+    uint8_t colorSpace = 0;
 };
 
 // A texture mapping (pbrt-v4's TextureMapping2D / TextureMapping3D). 2D kinds give (s, t):
@@ -333,7 +337,8 @@ enum class MediumKind : uint8_t { Homogeneous, UniformGrid, RGBGrid, Cloud };
 struct MediumGrid {
     uint32_t nx = 0, ny = 0, nz = 0, channels = 1;
     uint64_t offset = 0;
-    SpectrumKind kind = SpectrumKind::RGBUnbounded;   // spectrum grids: Unbounded or Illuminant (D65)
+    SpectrumKind kind = SpectrumKind::RGBUnbounded;   // spectrum grids: Unbounded or Illuminant
+    uint8_t colorSpace = 0;  // ColorSpaceId of the grid's RGB (its illuminant, for Illuminant grids)
 };
 
 struct Medium {
@@ -383,7 +388,7 @@ struct FilterData {
 struct FilmData {
     int width = 0, height = 0;
     Float imagingRatio = 1;      // exposure time * iso / 100
-    Float xyzToOutput[3][3];     // XYZ -> linear sRGB (with white balance folded in, if any)
+    Float xyzToOutput[3][3];     // XYZ -> linear RGB of the film's color space (white balance folded in, if any)
     Float maxComponentValue = Infinity;
 };
 
@@ -411,11 +416,12 @@ struct SceneView {
     Span<Distribution2D> distributions2D;
     Span<Float> distData;
     SpectrumTables spectra;
-    // RGB -> sigmoid coefficient table (Jakob & Hanika 2019) for the scene color space (sRGB):
-    // res^3 * 3 entries per maximal component (3 of them), zNodes of size res.
+    // RGB -> sigmoid coefficient tables (Jakob & Hanika 2019), one per color space in ColorSpaceId
+    // order, concatenated: each 3 * res^3 * 3 entries (res^3 * 3 per maximal component); zNodes
+    // (size res) shared. Only sRGB's when nothing looks another one up at render time.
     Span<Float> rgbToSpecCoeffs, rgbToSpecZNodes;
     uint32_t rgbToSpecRes = 0;
-    uint32_t illuminantTable = 0;   // the color space's standard illuminant (D65), in spectra
+    uint32_t illuminantTables[NumColorSpaces] = {0, 0, 0, 0};  // each color space's illuminant, in spectra
     Span<Medium> media;
     Span<Float> mediumData;         // the grids of the media (MediumGrid)
     // Shadow rays must walk through interface surfaces (the scene has media or "interface"
@@ -429,6 +435,17 @@ struct SceneView {
     FilterData filter;
     Bounds3f bounds;
 };
+
+// The RGB -> spectrum table of color space cs (a ColorSpaceId); sRGB's (the first) when the scene
+// holds no table for cs.
+LU_INLINE const Float *RGBToSpecCoeffs(const SceneView &s, uint32_t cs) {
+    uint64_t size = uint64_t(9) * s.rgbToSpecRes * s.rgbToSpecRes * s.rgbToSpecRes;
+    return (uint64_t(cs) + 1) * size <= s.rgbToSpecCoeffs.size ? s.rgbToSpecCoeffs.ptr + cs * size : s.rgbToSpecCoeffs.ptr;
+}
+
+LU_INLINE uint32_t IlluminantTable(const SceneView &s, uint32_t cs) {
+    return s.illuminantTables[cs < NumColorSpaces ? cs : 0];
+}
 
 // Shapes in render space: every shape before the first prototype's.
 LU_INLINE uint32_t TopLevelShapeCount(const SceneView &s) {

@@ -3,6 +3,7 @@
 #include "lucerna/image/image.h"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfChromaticitiesAttribute.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -130,6 +131,11 @@ Image ReadEXR(const std::string &filename, ImageMetadata *metadata) {
             fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, dw, xStride, yStride));
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
+        if (auto *ch = header.findTypedAttribute<Imf::ChromaticitiesAttribute>("chromaticities")) {
+            const Imf::Chromaticities &c = ch->value();
+            image.hasChromaticities = true;
+            image.chromaticities = {c.red.x, c.red.y, c.green.x, c.green.y, c.blue.x, c.blue.y, c.white.x, c.white.y};
+        }
 
         if (metadata) {
             metadata->clear();
@@ -307,6 +313,12 @@ void WriteEXR(const std::string &filename, const Image &image, const ImageMetada
             if (header.find(key) != header.end())
                 Fail(filename, "metadata key '" + key + "' is a reserved OpenEXR attribute");
             header.insert(key, Imf::StringAttribute(value));
+        }
+        if (image.hasChromaticities) {
+            const std::array<float, 8> &c = image.chromaticities;
+            header.insert("chromaticities", Imf::ChromaticitiesAttribute(Imf::Chromaticities(
+                                                Imath::V2f(c[0], c[1]), Imath::V2f(c[2], c[3]),
+                                                Imath::V2f(c[4], c[5]), Imath::V2f(c[6], c[7]))));
         }
         Imf::FrameBuffer fb;
         size_t xStride = sizeof(float) * image.channels, yStride = xStride * image.width;

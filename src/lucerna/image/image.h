@@ -2,6 +2,7 @@
 // libpng), host only.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <map>
 #include <stdexcept>
@@ -14,6 +15,10 @@ namespace lu {
 struct Image {
     int width = 0, height = 0, channels = 0;
     std::vector<float> pixels;
+    // OpenEXR "chromaticities" (red, green, blue, white xy): read from an EXR that has them,
+    // written by WriteEXR when set (pbrt-v4 writes them for every non-sRGB film).
+    bool hasChromaticities = false;
+    std::array<float, 8> chromaticities{};
     float &At(int x, int y, int c) { return pixels[(size_t(y) * width + x) * channels + c]; }
     float At(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
 };

@@ -110,7 +110,7 @@ LU_INLINE SampledSpectrum ProjectionI(const Light &l, const SceneView &s, Vec3f 
     int y = Clamp(int(st.y * Float(im.height)), 0, int(im.height) - 1);
     Float rgb[3];
     ImageRGB(s, im, x, y, rgb);
-    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra) * l.scale;
 }
 
 // Radiance leaving an area light point p (normal n, surface uv) in direction w. One-sided lights
@@ -125,7 +125,7 @@ LU_INLINE SampledSpectrum AreaLightL(const Light &l, const SceneView &s, Vec3f /
         Vec2f st(uv.x, 1 - uv.y);
         Float rgb[3];
         for (int c = 0; c < 3; ++c) rgb[c] = ImageBilerp(im, s, st, im.channels >= 3 ? c : 0);
-        return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+        return SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra) * l.scale;
     }
     return SampleSpectrum(l.spectrum, lambda, s.spectra) * l.scale;
 }
@@ -158,7 +158,7 @@ LU_INLINE SampledSpectrum ImageInfiniteLe(const Light &l, const SceneView &s, Ve
     WrapOctahedral(&x, &y, int(im.width), int(im.height));
     Float rgb[3];
     ImageRGB(s, im, x, y, rgb);
-    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * l.scale;
+    return SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra) * l.scale;
 }
 
 // Radiance arriving along an escaped ray with unit direction dir, from an infinite light.

@@ -8,10 +8,11 @@
 
 namespace lu {
 
-// Negative components are clamped to 0; black gives a zero-scale spectrum.
-LU_INLINE Spectrum RGBIlluminantSpectrum(const SceneView &s, const Float rgb[3]) {
-    return RGBIlluminantSpectrum(s.rgbToSpecCoeffs.ptr, s.rgbToSpecZNodes.ptr, s.rgbToSpecRes, Max(rgb[0], Float(0)),
-                                 Max(rgb[1], Float(0)), Max(rgb[2], Float(0)), s.illuminantTable);
+// rgb in color space cs (a ColorSpaceId; sRGB by default). Negative components are clamped to 0;
+// black gives a zero-scale spectrum.
+LU_INLINE Spectrum RGBIlluminantSpectrum(const SceneView &s, const Float rgb[3], uint32_t cs = 0) {
+    return RGBIlluminantSpectrum(RGBToSpecCoeffs(s, cs), s.rgbToSpecZNodes.ptr, s.rgbToSpecRes, Max(rgb[0], Float(0)),
+                                 Max(rgb[1], Float(0)), Max(rgb[2], Float(0)), IlluminantTable(s, cs));
 }
 
 }  // namespace lu

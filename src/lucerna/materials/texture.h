@@ -165,12 +165,12 @@ LU_INLINE Vec2f TextureToImageST(Vec2f st) { return {st.x, 1 - st.y}; }
 
 // ---- RGB -> spectrum for image texels ----
 
-// pbrt-v4's RGBAlbedoSpectrum (rgb clamped to [0,1]) or RGBUnboundedSpectrum of the scene's
-// color space table, sampled at lambda.
+// pbrt-v4's RGBAlbedoSpectrum (rgb clamped to [0,1]) or RGBUnboundedSpectrum of color space cs
+// (a ColorSpaceId), sampled at lambda.
 LU_INLINE SampledSpectrum RGBToSampledSpectrum(const Float rgb[3], bool unbounded, const SampledWavelengths &lambda,
-                                               const SceneView &scene) {
+                                               const SceneView &scene, uint32_t cs = 0) {
     if (scene.rgbToSpecRes < 2 || scene.rgbToSpecCoeffs.empty()) return SampledSpectrum(0);
-    const Float *coeffs = scene.rgbToSpecCoeffs.ptr, *zNodes = scene.rgbToSpecZNodes.ptr;
+    const Float *coeffs = RGBToSpecCoeffs(scene, cs), *zNodes = scene.rgbToSpecZNodes.ptr;
     Spectrum s = unbounded ? RGBUnboundedSpectrum(coeffs, zNodes, scene.rgbToSpecRes, rgb[0], rgb[1], rgb[2])
                            : RGBAlbedoSpectrum(coeffs, zNodes, scene.rgbToSpecRes, rgb[0], rgb[1], rgb[2]);
     return SampleSpectrum(s, lambda, scene.spectra);
@@ -208,7 +208,7 @@ LU_INLINE SampledSpectrum EvalSpectrumImage(const SpectrumTexture &tex, const Te
         rgb[0] = rgb[1] = rgb[2] = tex.scale * ImageLookup(img, scene, st, 0, tex.pointFilter);
     }
     for (int c = 0; c < 3; ++c) rgb[c] = Max(Float(0), tex.invert ? 1 - rgb[c] : rgb[c]);
-    return RGBToSampledSpectrum(rgb, tex.unbounded, lambda, scene);
+    return RGBToSampledSpectrum(rgb, tex.unbounded, lambda, scene, img.colorSpace);
 }
 
 LU_TEXTURE_NOINLINE LU_HD inline SampledSpectrum EvalMarble(const SpectrumTexture &tex, const TextureEvalContext &ctx,

@@ -43,7 +43,7 @@ LU_INLINE SampledSpectrum GridSpectrum(const SceneView &s, const MediumGrid &g, 
     sp.c[1] = c[1];
     sp.c[2] = c[2];
     sp.scale = c[3];
-    sp.table = s.illuminantTable;
+    sp.table = IlluminantTable(s, g.colorSpace);
     return SampleSpectrum(sp, lambda, s.spectra);
 }
 

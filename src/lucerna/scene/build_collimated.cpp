@@ -57,7 +57,7 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
     bool line = p.Has("wavelength");
     if (E && line) Fail(ParamLoc(p, "wavelength", e.loc), "collimated light: give either \"E\" or \"wavelength\", not both");
     if (!line && p.Has("bandwidth")) Fail(ParamLoc(p, "bandwidth", e.loc), "collimated light: \"bandwidth\" needs \"wavelength\"");
-    l.spectrum = line ? LaserLine(ctx, p, e.loc) : E ? *E : IlluminantSpectrum();
+    l.spectrum = line ? LaserLine(ctx, p, e.loc) : E ? *E : IlluminantSpectrum(ctx, e.colorSpace);
     // ---- Geometry: the disc at "from", the beam towards "to", after the CTM ----
     Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
     Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));

@@ -74,6 +74,7 @@ struct ImageKey {
 struct LoadedImage {
     uint32_t width = 0, height = 0, channels = 0;
     uint64_t offset = 0;
+    uint8_t colorSpace = 0;  // ColorSpaceId of the file's RGB: EXR chromaticities, else sRGB (pbrt-v4)
 };
 
 struct AreaLightParams {
@@ -149,7 +150,9 @@ struct BuildContext {
 // ---- build_spectra.cpp ----
 
 // The color space's standard illuminant (D65) as a Spectrum.
-Spectrum IlluminantSpectrum();
+// The illuminant of color space cs (a ColorSpaceId), as a tabulated spectrum (pbrt-v4's
+// colorSpace->illuminant, the default emission of lights).
+Spectrum IlluminantSpectrum(BuildContext &ctx, uint8_t cs);
 // A spectrum-valued parameter ("rgb", "spectrum" (pairs, named or file), "blackbody") as pbrt-v4's
 // ParameterDictionary::GetOneSpectrum; nullopt when absent. Other types of that name are errors.
 std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary &params, const std::string &name,

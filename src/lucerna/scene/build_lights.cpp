@@ -48,8 +48,9 @@ bool IsFiniteMatrix(const Matrix4 &m) {
 bool IsFinite3(const Vec3f &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // The color space's LuminanceVector: Y of each primary.
-void LuminanceVector(Float lum[3]) {
-    for (int c = 0; c < 3; ++c) lum[c] = RGBToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
+void LuminanceVector(Float lum[3], uint32_t colorSpace) {
+    const RGBColorSpace &cs = GetRGBColorSpace(ColorSpaceId(colorSpace));
+    for (int c = 0; c < 3; ++c) lum[c] = cs.ToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
 }
 
 // The RGB image named by string parameter "filename" of an image light (pbrt-v4 refuses images
@@ -76,7 +77,7 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
     std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
     Float scale = GetScale(p, e.loc, "AreaLightSource " + Quoted(e.name));
     a.twoSided = p.GetOneBool("twosided", false);
-    a.L = L ? *L : IlluminantSpectrum();
+    a.L = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
     if (p.Has("filename")) {
         // pbrt-v4: the image's RGB as illuminant spectra; scaled as the color space's illuminant.
         if (L) Fail(ParamLoc(p, "filename", e.loc), "both \"L\" and \"filename\" specified for AreaLightSource \"diffuse\"");
@@ -84,13 +85,14 @@ const AreaLightParams &ParseAreaLight(BuildContext &ctx, int index) {
             Fail(ParamLoc(p, "filename", e.loc), "AreaLightSource \"diffuse\": \"filename\" is empty");
         LoadedImage img = LoadLightImage(ctx, p, e.loc, "AreaLightSource \"diffuse\"");
         Float lum[3];
-        LuminanceVector(lum);
+        LuminanceVector(lum, img.colorSpace);
         const Float *t = ctx.scene.texels.data() + img.offset;
         double sum = 0;
         for (size_t i = 0; i < size_t(img.width) * img.height; ++i)
             for (int c = 0; c < 3; ++c) sum += double(t[i * img.channels + c]) * lum[c];
         a.imageLuminance = sum / (double(img.width) * img.height);
         a.image = AddImageData(ctx, img, WrapMode::Clamp);
+        a.L = IlluminantSpectrum(ctx, img.colorSpace);   // the image file's color space (pbrt-v4)
     }
     // Scale so that the radiance is equivalent to 1 nit.
     Float photometric = ctx.Registry().ToPhotometric(a.L);
@@ -138,7 +140,7 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (filename.empty()) {
         // Uniform: "L", or the color space's illuminant.
         l.kind = LightKind::UniformInfinite;
-        l.spectrum = L ? *L : IlluminantSpectrum();
+        l.spectrum = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
         l.scale = scale / Photometric(ctx, l.spectrum);
         if (E_v > 0) l.scale *= E_v / Pi;  // illuminance of uniform emission on an upward-facing patch
         return;
@@ -155,13 +157,14 @@ void BuildInfinite(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (!IsFiniteMatrix(e.renderFromObject.mInv))
         Fail(e.loc, "the transformation of this \"infinite\" light is not invertible: its directions are undefined");
     l.kind = LightKind::ImageInfinite;
-    l.spectrum = IlluminantSpectrum();
-    l.scale = scale / Photometric(ctx, IlluminantSpectrum());
+    l.spectrum = IlluminantSpectrum(ctx, img.colorSpace);  // the image file's color space (pbrt-v4)
+    l.scale = scale / Photometric(ctx, l.spectrum);
     const Float *texels = ctx.scene.texels.data() + img.offset;
     if (E_v > 0) {
-        // pbrt-v4: upper-hemisphere illuminance of the map (sRGB luminance weights), times 2 pi / N.
-        Float lum[3];
-        LuminanceVector(lum);
+        // pbrt-v4: upper-hemisphere illuminance of the map (its color space's luminance weights), times 2 pi / N.
+        Float lum[3];  // the color space's LuminanceVector: Y of each primary
+        const RGBColorSpace &imgSpace = GetRGBColorSpace(ColorSpaceId(img.colorSpace));
+        for (int c = 0; c < 3; ++c) lum[c] = imgSpace.ToXYZ(RGB{Float(c == 0), Float(c == 1), Float(c == 2)})[1];
         double illuminance = 0;
         for (uint32_t y = 0; y < img.height; ++y) {
             Float v = (Float(y) + 0.5f) / Float(img.height);
@@ -282,7 +285,7 @@ void BuildGoniometric(BuildContext &ctx, const LightEntity &e, Light &l, std::st
     if (!IsFiniteMatrix(e.renderFromObject.mInv))
         Fail(e.loc, owner + ": the transformation is not invertible: the light's directions are undefined");
     l.kind = LightKind::Goniometric;
-    l.spectrum = I ? *I : IlluminantSpectrum();
+    l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
     l.scale = scale / Photometric(ctx, l.spectrum);
     if (IsIESFile(filename)) {
         l.profile = IESProfileTable(ctx, e, "filename", description);
@@ -313,8 +316,8 @@ void BuildProjection(BuildContext &ctx, const LightEntity &e, Light &l) {
         Fail(e.loc, owner + ": the transformation is not invertible: the light's directions are undefined");
     LoadedImage img = LoadLightImage(ctx, p, e.loc, "\"projection\" light");
     l.kind = LightKind::Projection;
-    l.spectrum = IlluminantSpectrum();
-    l.scale = scale / Photometric(ctx, IlluminantSpectrum());
+    l.spectrum = IlluminantSpectrum(ctx, img.colorSpace);  // the image file's color space (pbrt-v4)
+    l.scale = scale / Photometric(ctx, l.spectrum);
     l.image = AddImageData(ctx, img, WrapMode::Clamp);
     Float aspect = Float(img.width) / Float(img.height);
     l.projectionScreen = aspect > 1 ? Vec2f(aspect, 1) : Vec2f(1, 1 / aspect);
@@ -322,7 +325,7 @@ void BuildProjection(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (phi_v > 0) {
         // pbrt-v4: k_e = the image's luminance integrated over the solid angle of its texels.
         Float lum[3];
-        LuminanceVector(lum);
+        LuminanceVector(lum, img.colorSpace);
         const ImageData &im = ctx.scene.images[l.image];
         const Float *t = ctx.scene.texels.data() + img.offset;
         double k_e = 0;
@@ -353,7 +356,7 @@ void BuildLights(BuildContext &ctx) {
         if (e.name == "point") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Point;
-            l.spectrum = I ? *I : IlluminantSpectrum();
+            l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
             l.scale = GetScale(p, e.loc, owner) / Photometric(ctx, l.spectrum);
             Float phi_v = GetPhotometric(p, "power", e.loc, owner);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
@@ -376,7 +379,7 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "spot") {
             std::optional<Spectrum> I = GetSpectrum(ctx, p, "I", SpectrumType::Illuminant);
             l.kind = LightKind::Spot;
-            l.spectrum = I ? *I : IlluminantSpectrum();
+            l.spectrum = I ? *I : IlluminantSpectrum(ctx, e.colorSpace);
             Float scale = GetScale(p, e.loc, owner);
             Float coneAngle = Float(p.GetOneFloat("coneangle", 30));
             Float coneDelta = Float(p.GetOneFloat("conedeltaangle", 5));
@@ -409,7 +412,7 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "distant") {
             std::optional<Spectrum> L = GetSpectrum(ctx, p, "L", SpectrumType::Illuminant);
             l.kind = LightKind::Distant;
-            l.spectrum = L ? *L : IlluminantSpectrum();
+            l.spectrum = L ? *L : IlluminantSpectrum(ctx, e.colorSpace);
             Float scale = GetScale(p, e.loc, owner);
             Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
             Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));

@@ -38,6 +38,13 @@ LoadedImage LoadImage(BuildContext &ctx, const std::string &path, bool pngIsLine
     if (img.channels == 2) Fail(loc, Quoted(path) + ": two-channel images are not supported (need Y, RGB or RGBA)");
     if (CountNonFinite(img) > 0) Fail(loc, Quoted(path) + ": image has infinite or not-a-number pixel values");
     LoadedImage li;
+    if (img.hasChromaticities) {  // pbrt-v4's ReadEXR: RGBColorSpace::Lookup, else a warning and sRGB
+        const auto &c = img.chromaticities;
+        std::optional<ColorSpaceId> cs = LookupColorSpace({c[0], c[1]}, {c[2], c[3]}, {c[4], c[5]}, {c[6], c[7]});
+        if (cs) li.colorSpace = uint8_t(*cs);
+        else
+            ctx.diag.Warning(loc, Quoted(path) + ": no supported color space matches the file's chromaticities; using sRGB");
+    }
     li.width = uint32_t(img.width);
     li.height = uint32_t(img.height);
     li.channels = img.channels == 1 ? 1 : 3;  // RGBA: alpha is not used
@@ -59,6 +66,7 @@ uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap) 
     d.channels = img.channels;
     d.offset = img.offset;
     d.wrap = wrap;
+    d.colorSpace = img.colorSpace;
     uint32_t index = uint32_t(ctx.scene.images.size());
     ctx.scene.images.push_back(d);
     ctx.imageDataCache[key] = index;

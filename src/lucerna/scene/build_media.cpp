@@ -237,6 +237,7 @@ MediumGrid AddRGBGrid(BuildContext &ctx, const MediumEntity &e, const std::strin
     HostScene &s = ctx.scene;
     g.channels = 4;
     g.kind = type == SpectrumType::Illuminant ? SpectrumKind::RGBIlluminant : SpectrumKind::RGBUnbounded;
+    g.colorSpace = p->colorSpace;
     g.offset = s.mediumData.size();
     size_t n = p->numbers.size() / 3;
     g.nx = uint32_t(n);   // the caller sets the dimensions
@@ -245,7 +246,7 @@ MediumGrid AddRGBGrid(BuildContext &ctx, const MediumEntity &e, const std::strin
         for (int c = 0; c < 3; ++c)
             if (!(rgb[c] >= 0) || !std::isfinite(rgb[c]))
                 Fail(p->loc, Where(e) + ": \"rgb " + name + "\" value " + std::to_string(i) + " has a negative or non-finite component");
-        Spectrum sp = ctx.Registry().FromRGB(rgb, type);
+        Spectrum sp = ctx.Registry().FromRGB(rgb, type, ColorSpaceId(g.colorSpace));
         s.mediumData.push_back(sp.c[0]);
         s.mediumData.push_back(sp.c[1]);
         s.mediumData.push_back(sp.c[2]);

@@ -18,11 +18,11 @@ static std::string Number(double x) {
     return buf;
 }
 
-Spectrum IlluminantSpectrum() {
+Spectrum IlluminantSpectrum(BuildContext &ctx, uint8_t cs) {
     Spectrum s;
     s.kind = SpectrumKind::Tabulated;
     s.scale = 1;
-    s.table = TableD65;
+    s.table = ctx.Registry().IlluminantTable(ColorSpaceId(cs));
     return s;
 }
 
@@ -133,7 +133,7 @@ std::optional<Spectrum> GetSpectrum(BuildContext &ctx, const ParameterDictionary
         if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0) Fail(p->loc, "RGB parameter " + Quoted(name) + " has a negative component");
         if (type == SpectrumType::Albedo && (rgb[0] > 1 || rgb[1] > 1 || rgb[2] > 1))
             Fail(p->loc, "RGB parameter " + Quoted(name) + " used as an albedo has a component > 1");
-        return ctx.Registry().FromRGB(rgb, type);
+        return ctx.Registry().FromRGB(rgb, type, ColorSpaceId(p->colorSpace));
     }
     if (t == "blackbody") {
         if (p->numbers.size() != 1) Fail(p->loc, "\"blackbody " + name + "\" needs exactly one value (temperature in kelvin)");

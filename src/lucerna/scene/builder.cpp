@@ -47,11 +47,28 @@ SceneView HostScene::View() const {
     v.mediumData = SpanOf(mediumData);
     v.walkInterfaces = walkInterfaces;
     v.spectra = spectra.Tables();
+    // sRGB's table alone unless an image's RGB is in another color space (constant RGB values
+    // were converted with their space's table while building).
     RGBToSpectrumTableData t = SRGBToSpectrumTable();
+    const uint32_t tableSize = 3 * t.res * t.res * t.res * 3;
     v.rgbToSpecRes = t.res;
     v.rgbToSpecZNodes = Span<Float>{t.zNodes, t.res};
-    v.rgbToSpecCoeffs = Span<Float>{t.coeffs, 3 * t.res * t.res * t.res * 3};
-    v.illuminantTable = TableD65;
+    v.rgbToSpecCoeffs = Span<Float>{t.coeffs, tableSize};
+    bool otherSpaces = false;
+    for (const ImageData &im : images) otherSpaces |= im.colorSpace != uint8_t(ColorSpaceId::SRGB);
+    if (otherSpaces) {
+        static const std::vector<Float> all = [&] {
+            std::vector<Float> a;
+            a.reserve(size_t(tableSize) * NumColorSpaces);
+            for (uint32_t i = 0; i < NumColorSpaces; ++i) {
+                RGBToSpectrumTableData ti = RGBToSpectrumTable(ColorSpaceId(i));
+                a.insert(a.end(), ti.coeffs, ti.coeffs + tableSize);
+            }
+            return a;
+        }();
+        v.rgbToSpecCoeffs = SpanOf(all);
+    }
+    for (uint32_t i = 0; i < NumColorSpaces; ++i) v.illuminantTables[i] = illuminantTables[i];
     for (const Material &m : materials)
         v.transmitters += m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric;
     for (const Light &l : lights) v.collimatedLights += l.kind == LightKind::Collimated;
@@ -206,15 +223,15 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     fd.height = yres;
     fd.imagingRatio = exposureTime * iso / 100;
     fd.maxComponentValue = maxComponent > 0 ? maxComponent : Infinity;
-    Mat3 out;  // XYZ -> linear sRGB: column j is the image of the j-th unit XYZ vector
-    for (int j = 0; j < 3; ++j) {
-        RGB col = XYZToRGB(XYZ{Float(j == 0), Float(j == 1), Float(j == 2)});
-        for (int i = 0; i < 3; ++i) out[i][j] = col[i];
-    }
+    // pbrt-v4's RGBFilm: outputRGBFromSensorRGB = colorSpace->RGBFromXYZ * sensor->XYZFromSensorRGB,
+    // colorSpace the one in effect at Film; the cie1931 sensor's XYZFromSensorRGB is the identity,
+    // or with "whitebalance" the Bradford adaptation from D(T) to the output space's white.
+    s.filmColorSpace = ColorSpaceId(f.colorSpace);
+    const RGBColorSpace &cs = GetRGBColorSpace(s.filmColorSpace);
+    Mat3 out = cs.rgbFromXYZ;
     if (whiteBalance != 0) {
         if (whiteBalance < 0) Fail(ParamLoc(p, "whitebalance", f.loc), "\"whitebalance\" must be a positive temperature");
-        // The sRGB white (xy of its D65 table, as pbrt-v4's RGBColorSpace::w).
-        out = Mul3(out, WhiteBalance(DaylightChromaticity(ctx, whiteBalance), {0.312717, 0.329031}));
+        out = Mul3(out, WhiteBalance(DaylightChromaticity(ctx, whiteBalance), cs.w));
     }
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) fd.xyzToOutput[i][j] = Float(out[i][j]);
@@ -417,8 +434,6 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
         throw all;
     };
     try {
-        if (desc.colorSpace != "srgb" && !desc.colorSpace.empty())
-            ctx.Collect([&] { FailUnsupported(desc.colorSpaceLoc, "ColorSpace " + Quoted(desc.colorSpace)); });
         for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
 
         // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).
@@ -438,6 +453,8 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
             ctx.Collect([&] { FailUnsupported({}, "media grids of more than 2^32 values in all"); });
         BuildLights(ctx);
         FinishLights(ctx);
+        for (uint32_t i = 0; i < NumColorSpaces; ++i)
+            scene->illuminantTables[i] = scene->spectra.IlluminantTable(ColorSpaceId(i));
     } catch (const SceneError &e) {
         throwCollected(&e);
         throw;

@@ -47,6 +47,8 @@ class HostScene {
     RenderSettings settings;   // as the scene's Integrator and Sampler directives set them (r0 resolved)
     Sampler sampler;           // the Sampler directive with all its options (seed: settings.seed)
     std::string outputFilename;   // Film "filename" ("" when absent)
+    ColorSpaceId filmColorSpace = ColorSpaceId::SRGB;  // the ColorSpace in effect at Film: the output image's
+    uint32_t illuminantTables[NumColorSpaces] = {TableD65, TableD65, TableD65, TableD65};  // in spectra
     std::vector<std::string> inputFiles;   // every file the scene read: the description's, then PLY meshes, images, spectra
     SceneStats stats;
     SpectrumRegistry spectra;

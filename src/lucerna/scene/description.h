@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lucerna/scene/error.h"
+#include "lucerna/spectrum/color_space.h"
 #include "lucerna/util/vecmath.h"
 
 namespace lu {
@@ -26,6 +27,9 @@ struct ParsedParameter {
     std::vector<std::string> strings; // string, texture, named spectrum or spectrum file name
     std::vector<bool> bools;
     mutable bool lookedUp = false;    // set by every Get*; unread parameters are reported
+    // The ColorSpace in effect where the parameter was written (a ColorSpaceId), for "rgb"
+    // values (pbrt-v4's ParsedParameter::colorSpace: Attribute values keep theirs).
+    uint8_t colorSpace = 0;
 };
 
 // Typed access to an entity's parameters. Every getter marks the parameter used; a parameter of
@@ -73,6 +77,7 @@ struct SceneEntity {
     std::string name;           // "perspective", "diffuse", "trianglemesh", ...
     FileLoc loc;
     ParameterDictionary params;
+    uint8_t colorSpace = 0;     // the ColorSpace in effect at the directive (a ColorSpaceId)
 };
 
 struct TransformedEntity : SceneEntity {
@@ -132,8 +137,6 @@ struct SceneDescription {
     // Rendering options (pre-WorldBegin); name == "" when absent (defaults apply).
     CameraEntity camera;
     SceneEntity film, sampler, integrator, filter, accelerator;
-    std::string colorSpace = "srgb";
-    FileLoc colorSpaceLoc;  // the ColorSpace directive that chose colorSpace (none for the default)
     std::vector<std::pair<std::string, FileLoc>> options;  // Option directives, as written
 
     // World.

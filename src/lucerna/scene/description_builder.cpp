@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lucerna/spectra/registry.h"
+
 namespace lu {
 
 SceneDescriptionBuilder::SceneDescriptionBuilder(Diagnostics &diag, const ParseOptions &options,
@@ -25,9 +27,8 @@ void SceneDescriptionBuilder::Enter(Block block, const char *directive, const Fi
         throw SceneError(loc, "\"" + std::string(directive) + "\" is not allowed after WorldBegin");
 }
 
-void SceneDescriptionBuilder::NoteParams(const ParamList &params) {
-    for (const ParsedParameter &p : params)
-        if (p.type == "rgb") rgbSeen_ = true;
+void SceneDescriptionBuilder::NoteParams(ParamList &params) {
+    for (ParsedParameter &p : params) p.colorSpace = state_.colorSpace;
 }
 
 void SceneDescriptionBuilder::ApplyTransform(const char *directive, const FileLoc &loc, const DMatrix &m,
@@ -205,18 +206,9 @@ void SceneDescriptionBuilder::Option(const std::string &name, const std::string 
 
 void SceneDescriptionBuilder::ColorSpace(const std::string &name, const FileLoc &loc) {
     Enter(Block::Any, "ColorSpace", loc);
-    if (name != "srgb" && name != "rec2020" && name != "aces2065-1" && name != "dci-p3")
-        throw SceneError(loc, "unknown color space \"" + name + "\" (known: srgb, rec2020, aces2065-1, dci-p3)");
-    if (name != desc_.colorSpace) {
-        if (colorSpaceSet_ || rgbSeen_)
-            diag_.Unsupported(loc, "ColorSpace \"" + name + "\"",
-                              "one color space per scene; \"" + desc_.colorSpace + "\" is kept");
-        else {
-            desc_.colorSpace = name;
-            desc_.colorSpaceLoc = loc;
-        }
-    }
-    colorSpaceSet_ = true;
+    std::optional<ColorSpaceId> cs = ColorSpaceFromName(name);
+    if (!cs) throw SceneError(loc, "unknown color space \"" + name + "\" (known: srgb, rec2020, aces2065-1, dci-p3)");
+    state_.colorSpace = uint8_t(*cs);
 }
 
 void SceneDescriptionBuilder::Camera(const std::string &name, ParamList params, const FileLoc &loc) {
@@ -243,6 +235,7 @@ void SceneDescriptionBuilder::SetOption(SceneEntity &slot, const char *directive
     SceneEntity e;
     e.name = name;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = ParameterDictionary(std::move(params));
     slot = std::move(e);
 }
@@ -350,6 +343,7 @@ void SceneDescriptionBuilder::MakeNamedMedium(const std::string &name, ParamList
     MediumEntity e;
     e.name = name;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.mediumAttributes, loc);
     e.renderFromObject = CurrentTransform(loc, "MakeNamedMedium");
     desc_.media.push_back(std::move(e));
@@ -363,6 +357,7 @@ void SceneDescriptionBuilder::Material(const std::string &name, ParamList params
     SceneEntity e;
     e.name = name;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.materialAttributes, loc);
     desc_.materials.push_back(std::move(e));
     state_.materialIndex = int(desc_.materials.size()) - 1;
@@ -375,6 +370,7 @@ void SceneDescriptionBuilder::MakeNamedMaterial(const std::string &name, ParamLi
     if (desc_.namedMaterials.count(name)) throw SceneError(loc, "named material \"" + name + "\" is already defined");
     SceneEntity e;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.materialAttributes, loc);
     const ParsedParameter *type = nullptr;  // the last one: the material's own wins over defaults
     for (const ParsedParameter &p : e.params.All())
@@ -408,6 +404,7 @@ void SceneDescriptionBuilder::Texture(const std::string &name, const std::string
     e.valueType = type;
     e.name = texClass;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.textureAttributes, loc);
     e.renderFromObject = CurrentTransform(loc, "Texture");
     e.baseDirectory = DirectoryOf(loc.Filename());
@@ -422,6 +419,7 @@ void SceneDescriptionBuilder::LightSource(const std::string &name, ParamList par
     LightEntity e;
     e.name = name;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.lightAttributes, loc);
     e.renderFromObject = CurrentTransform(loc, "LightSource");
     e.outsideMedium = state_.outsideMedium;
@@ -433,6 +431,7 @@ void SceneDescriptionBuilder::AreaLightSource(const std::string &name, ParamList
     NoteParams(params);
     state_.areaLightName = name;
     state_.areaLightLoc = loc;
+    state_.areaLightColorSpace = state_.colorSpace;
     // The light attribute defaults in effect now apply (as pbrt-v4's AreaLightSource).
     state_.areaLightParams =
         std::make_shared<ParamList>(MakeDict(std::move(params), state_.lightAttributes, loc).All());
@@ -444,6 +443,7 @@ void SceneDescriptionBuilder::Shape(const std::string &name, ParamList params, c
     ShapeEntity e;
     e.name = name;
     e.loc = loc;
+    e.colorSpace = state_.colorSpace;
     e.params = MakeDict(std::move(params), state_.shapeAttributes, loc);
     e.renderFromObject = CurrentTransform(loc, "Shape");
     e.reverseOrientation = state_.reverseOrientation;
@@ -456,6 +456,7 @@ void SceneDescriptionBuilder::Shape(const std::string &name, ParamList params, c
         SceneEntity light;
         light.name = state_.areaLightName;
         light.loc = state_.areaLightLoc;
+        light.colorSpace = state_.areaLightColorSpace;
         ParamList lp = state_.areaLightParams ? *state_.areaLightParams : ParamList();
         budget_.Spend(ValueBudget::Cost(lp), loc);
         light.params = ParameterDictionary(std::move(lp));

@@ -100,7 +100,9 @@ class SceneDescriptionBuilder final : public ParserTarget {
         std::string areaLightName;
         std::shared_ptr<const ParamList> areaLightParams;
         FileLoc areaLightLoc;
+        uint8_t areaLightColorSpace = 0;
         std::string insideMedium, outsideMedium;
+        uint8_t colorSpace = 0;  // ColorSpaceId set by ColorSpace (pbrt-v4's graphicsState.colorSpace)
         Attributes shapeAttributes, lightAttributes, materialAttributes, mediumAttributes, textureAttributes;
     };
 
@@ -124,7 +126,8 @@ class SceneDescriptionBuilder final : public ParserTarget {
     // Every directive starts here: checks that it is allowed in the current block (pbrt-v4's
     // VERIFY_OPTIONS / VERIFY_WORLD) and notes that the scene has a directive.
     void Enter(Block block, const char *directive, const FileLoc &loc);
-    void NoteParams(const ParamList &params);
+    // Stamps every parameter with the color space in effect.
+    void NoteParams(ParamList &params);
     void ApplyTransform(const char *directive, const FileLoc &loc, const DMatrix &m, bool replace);
     lu::Transform CurrentTransform(const FileLoc &loc, const char *what);
     ParameterDictionary MakeDict(ParamList params, const Attributes &attributes, const FileLoc &loc);
@@ -154,7 +157,6 @@ class SceneDescriptionBuilder final : public ParserTarget {
     std::vector<std::pair<std::string, FileLoc>> namedMaterialUses_;  // (name, NamedMaterial loc) per shape
     bool warnedTransformBegin_ = false, warnedMotion_ = false, warnedTransformTimes_ = false,
          warnedActiveTransform_ = false;
-    bool colorSpaceSet_ = false, rgbSeen_ = false;
 };
 
 }  // namespace lu

@@ -57,7 +57,7 @@ inline SampledSpectrum ImageSpectrumSum(const SceneView &s, const ImageData &im,
         for (uint32_t x = 0; x < im.width; ++x) {
             Float rgb[3];
             ImageRGB(s, im, int(x), int(y), rgb);
-            sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb), lambda, s.spectra) * Float(weight(x, y));
+            sum += SampleSpectrum(RGBIlluminantSpectrum(s, rgb, im.colorSpace), lambda, s.spectra) * Float(weight(x, y));
         }
     return sum;
 }

@@ -34,6 +34,7 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     const RenderSettings &rs = s.settings;
     std::ostringstream o;
     o << "resolution: " << s.film.width << " x " << s.film.height << "\n";
+    o << "color space: " << GetRGBColorSpace(s.filmColorSpace).name << " (film output)\n";
     o << "camera: " << st.cameraType;
     if (s.camera.kind == CameraKind::Perspective) o << ", fov " << Fmt("%.6g", st.fov) << " deg";
     else if (s.camera.kind == CameraKind::SphericalEqualArea) o << ", equal-area mapping";

@@ -4,10 +4,12 @@
 #include "lucerna/spectra/registry.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <span>
 
 #include "lucerna/spectra/cie_data.h"
+#include "lucerna/spectra/color_space_data.h"
 #include "lucerna/spectrum/rgb_to_spectrum.h"
 
 namespace lu {
@@ -66,33 +68,42 @@ Mat3 Inverse(const Mat3 &m) {
     return r;
 }
 
-struct SRGBMatrices {
-    Mat3 xyzFromRGB, rgbFromXYZ;
-};
+// pbrt-v4 RGBColorSpace(r, g, b, illuminant): white point from the illuminant's 1 nm table.
+RGBColorSpace MakeColorSpace(ColorSpaceId id) {
+    const data::ColorSpaceDefinition &d = data::ColorSpaces[uint32_t(id)];
+    SpectrumRegistry reg;
+    std::optional<Spectrum> illum = reg.Named(d.illuminant);
+    XYZ W = reg.ToXYZ(*illum);
+    RGBColorSpace cs;
+    cs.id = id;
+    cs.name = d.name;
+    cs.illuminant = d.illuminant;
+    cs.r = {d.r[0], d.r[1]};
+    cs.g = {d.g[0], d.g[1]};
+    cs.b = {d.b[0], d.b[1]};
+    double sum = double(W[0]) + W[1] + W[2];
+    cs.w = {W[0] / sum, W[1] / sum};
+    const double *prim[3] = {d.r, d.g, d.b};
+    Mat3 rgb;
+    for (int c = 0; c < 3; ++c) {  // XYZ::FromxyY(primary, Y = 1) as column c
+        double x = prim[c][0], y = prim[c][1];
+        rgb[0][c] = x / y;
+        rgb[1][c] = 1;
+        rgb[2][c] = (1 - x - y) / y;
+    }
+    Mat3 inv = Inverse(rgb);
+    double C[3];
+    for (int i = 0; i < 3; ++i) C[i] = inv[i][0] * W[0] + inv[i][1] * W[1] + inv[i][2] * W[2];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) cs.xyzFromRGB[i][j] = rgb[i][j] * C[j];
+    cs.rgbFromXYZ = Inverse(cs.xyzFromRGB);
+    return cs;
+}
 
-// pbrt-v4 RGBColorSpace(r, g, b, stdillum-D65): white point from the 1 nm D65 table.
-const SRGBMatrices &SRGB() {
-    static const SRGBMatrices m = [] {
-        SpectrumRegistry reg;
-        XYZ W = reg.ToXYZ([] { Spectrum s; s.kind = SpectrumKind::Tabulated; s.scale = 1; s.table = TableD65; return s; }());
-        const double prim[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
-        Mat3 rgb;
-        for (int c = 0; c < 3; ++c) {  // XYZ::FromxyY(primary, Y = 1) as column c
-            double x = prim[c][0], y = prim[c][1];
-            rgb[0][c] = x / y;
-            rgb[1][c] = 1;
-            rgb[2][c] = (1 - x - y) / y;
-        }
-        Mat3 inv = Inverse(rgb);
-        double C[3];
-        for (int i = 0; i < 3; ++i) C[i] = inv[i][0] * W[0] + inv[i][1] * W[1] + inv[i][2] * W[2];
-        SRGBMatrices out;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) out.xyzFromRGB[i][j] = rgb[i][j] * C[j];
-        out.rgbFromXYZ = Inverse(out.xyzFromRGB);
-        return out;
-    }();
-    return m;
+std::array<Float, 3> Apply(const Mat3 &m, const std::array<Float, 3> &v) {
+    std::array<Float, 3> r;
+    for (int i = 0; i < 3; ++i) r[i] = Float(m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2]);
+    return r;
 }
 
 }  // namespace
@@ -113,13 +124,18 @@ uint32_t SpectrumRegistry::AddTable(const std::vector<Float> &values471) {
     return index;
 }
 
-Spectrum SpectrumRegistry::FromRGB(const RGB &rgb, SpectrumType type) const {
-    RGBToSpectrumTableData t = SRGBToSpectrumTable();
+uint32_t SpectrumRegistry::IlluminantTable(ColorSpaceId cs) {
+    if (cs == ColorSpaceId::SRGB) return TableD65;
+    return Named(data::ColorSpaces[uint32_t(cs)].illuminant)->table;
+}
+
+Spectrum SpectrumRegistry::FromRGB(const RGB &rgb, SpectrumType type, ColorSpaceId cs) {
+    RGBToSpectrumTableData t = RGBToSpectrumTable(cs);
     switch (type) {
     case SpectrumType::Albedo: return RGBAlbedoSpectrum(t.coeffs, t.zNodes, t.res, rgb[0], rgb[1], rgb[2]);
     case SpectrumType::Unbounded: return RGBUnboundedSpectrum(t.coeffs, t.zNodes, t.res, rgb[0], rgb[1], rgb[2]);
     case SpectrumType::Illuminant:
-        return RGBIlluminantSpectrum(t.coeffs, t.zNodes, t.res, rgb[0], rgb[1], rgb[2], TableD65);
+        return RGBIlluminantSpectrum(t.coeffs, t.zNodes, t.res, rgb[0], rgb[1], rgb[2], IlluminantTable(cs));
     }
     return Spectrum::Const(0);
 }
@@ -213,18 +229,39 @@ XYZ SpectrumRegistry::ToXYZ(const Spectrum &s) const {
     return {Float(xyz[0] / CIE_Y_integral), Float(xyz[1] / CIE_Y_integral), Float(xyz[2] / CIE_Y_integral)};
 }
 
-XYZ RGBToXYZ(const RGB &rgb) {
-    const Mat3 &m = SRGB().xyzFromRGB;
-    XYZ r;
-    for (int i = 0; i < 3; ++i) r[i] = Float(m[i][0] * rgb[0] + m[i][1] * rgb[1] + m[i][2] * rgb[2]);
-    return r;
+const RGBColorSpace &GetRGBColorSpace(ColorSpaceId cs) {
+    static const RGBColorSpace spaces[NumColorSpaces] = {
+        MakeColorSpace(ColorSpaceId::SRGB), MakeColorSpace(ColorSpaceId::DCI_P3),
+        MakeColorSpace(ColorSpaceId::Rec2020), MakeColorSpace(ColorSpaceId::ACES2065_1)};
+    return spaces[uint32_t(cs) < NumColorSpaces ? uint32_t(cs) : 0];
 }
 
-RGB XYZToRGB(const XYZ &xyz) {
-    const Mat3 &m = SRGB().rgbFromXYZ;
-    RGB r;
-    for (int i = 0; i < 3; ++i) r[i] = Float(m[i][0] * xyz[0] + m[i][1] * xyz[1] + m[i][2] * xyz[2]);
-    return r;
+std::optional<ColorSpaceId> ColorSpaceFromName(const std::string &name) {
+    std::string lower;
+    for (char c : name) lower += char(std::tolower((unsigned char)c));
+    int i = data::ColorSpaceIndex(lower.c_str());
+    if (i < 0) return std::nullopt;
+    return ColorSpaceId(i);
 }
+
+std::optional<ColorSpaceId> LookupColorSpace(const std::array<double, 2> &r, const std::array<double, 2> &g,
+                                             const std::array<double, 2> &b, const std::array<double, 2> &w) {
+    auto close = [](const std::array<double, 2> &a, const std::array<double, 2> &c) {
+        for (int i = 0; i < 2; ++i)
+            if (a[i] != c[i] && !(std::abs((a[i] - c[i]) / c[i]) < 1e-3)) return false;
+        return true;
+    };
+    for (uint32_t i = 0; i < NumColorSpaces; ++i) {
+        const RGBColorSpace &cs = GetRGBColorSpace(ColorSpaceId(i));
+        if (close(r, cs.r) && close(g, cs.g) && close(b, cs.b) && close(w, cs.w)) return cs.id;
+    }
+    return std::nullopt;
+}
+
+RGB RGBColorSpace::ToRGB(const XYZ &xyz) const { return Apply(rgbFromXYZ, xyz); }
+XYZ RGBColorSpace::ToXYZ(const RGB &rgb) const { return Apply(xyzFromRGB, rgb); }
+
+XYZ RGBToXYZ(const RGB &rgb) { return GetRGBColorSpace(ColorSpaceId::SRGB).ToXYZ(rgb); }
+RGB XYZToRGB(const XYZ &xyz) { return GetRGBColorSpace(ColorSpaceId::SRGB).ToRGB(xyz); }
 
 }  // namespace lu

@@ -1,19 +1,25 @@
-// Lucerna build tool: fits the Jakob & Hanika 2019 RGB -> sigmoid-polynomial table for sRGB
-// (Gauss-Newton in CIELAB with an analytic Jacobian, the setup of pbrt-v4's rgb2spec_opt: 5 nm CIE 1931 data, D65, Simpson
+// Lucerna build tool: fits the Jakob & Hanika 2019 RGB -> sigmoid-polynomial table for one of
+// pbrt-v4's RGB color spaces (srgb, dci-p3, rec2020, aces2065-1; spectra/color_space_data.h)
+// (Gauss-Newton in CIELAB with an analytic Jacobian, the setup of pbrt-v4's rgb2spec_opt: 5 nm CIE 1931 data, the space's illuminant, Simpson
 // 3/8 quadrature on a 5/3 nm grid, z nodes smoothstep(smoothstep(k / (res - 1)))) and writes it
 // as a raw binary: u32 magic 'LUR2', u32 res, u32 0, u32 0, f32 zNodes[res],
 // f32 coeffs[3][res][res][res][3] ([max component][z][y][x][c0 c1 c2], polynomial in nm).
-// Usage: lucerna_rgb2spec_gen <res> <output.bin>
+// sRGB uses the standard 6-digit matrices and the D65 normalization of rgb2spec_opt (the table the
+// renderer has always shipped); the other spaces derive RGB <-> XYZ from their chromaticities and
+// the XYZ of their illuminant at 1 nm, as the renderer does (pbrt-v4's RGBColorSpace constructor).
+// Usage: lucerna_rgb2spec_gen <res> <output.bin> [color space, default srgb]
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <thread>
 #include <vector>
 
 #include "lucerna/spectra/cie_data.h"
+#include "lucerna/spectra/color_space_data.h"
 
 namespace {
 
@@ -24,12 +30,85 @@ constexpr int FineSamples = (CoarseSamples - 1) * 3 + 1;   // Simpson 3/8 nodes
 constexpr double D65Norm = 10566.864005283874576;
 
 // sRGB <-> XYZ (D65), the standard 6-digit matrices.
-const double XYZToSRGB[3][3] = {{3.240479, -1.537150, -0.498535},
+const double XYZToSRGBStd[3][3] = {{3.240479, -1.537150, -0.498535},
                                 {-0.969256, 1.875991, 0.041556},
                                 {0.055648, -0.204043, 1.057311}};
-const double SRGBToXYZ[3][3] = {{0.412453, 0.357580, 0.180423},
+const double SRGBToXYZStd[3][3] = {{0.412453, 0.357580, 0.180423},
                                 {0.212671, 0.715160, 0.072169},
                                 {0.019334, 0.119193, 0.950227}};
+
+// The color space being fitted: its matrices and its illuminant (5 nm table, normalization).
+struct Gamut {
+    double xyzToRGB[3][3], rgbToXYZ[3][3];
+    const lu::data::UniformSpectrumData *illum = nullptr;
+    double illumNorm = 0;  // 0: normalize to unit luminance with the quadrature below
+};
+
+void Invert3(const double m[3][3], double r[3][3]) {
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+            r[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) / det;
+        }
+}
+
+const lu::data::UniformSpectrumData *FindIlluminant(const char *name) {
+    for (const auto &il : lu::data::Illuminants)
+        if (std::string_view(il.name) == name) return &il;
+    std::fprintf(stderr, "rgb2spec_gen: no illuminant table %s\n", name);
+    std::exit(1);
+}
+
+// Linear interpolation of a 5 nm illuminant table at a wavelength inside it.
+double IllumAt(const lu::data::UniformSpectrumData &il, double lambda) {
+    double x = (lambda - il.lambda0) / il.step;
+    int i = std::clamp(int(x), 0, il.n - 2);
+    double w = x - i;
+    return (1 - w) * il.values[i] + w * il.values[i + 1];
+}
+
+Gamut MakeGamut(int index) {
+    const lu::data::ColorSpaceDefinition &cs = lu::data::ColorSpaces[index];
+    Gamut g;
+    g.illum = FindIlluminant(cs.illuminant);
+    if (index == int(lu::ColorSpaceId::SRGB)) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                g.xyzToRGB[i][j] = XYZToSRGBStd[i][j];
+                g.rgbToXYZ[i][j] = SRGBToXYZStd[i][j];
+            }
+        g.illumNorm = D65Norm;
+        return g;
+    }
+    // White point: XYZ of the illuminant at 1 nm (linear between its 5 nm samples), Y = 1.
+    double W[3] = {0, 0, 0};
+    for (int i = 0; i < lu::data::CIESamples; ++i) {
+        double v = IllumAt(*g.illum, 360.0 + i);
+        W[0] += lu::data::CIE_X[i] * v;
+        W[1] += lu::data::CIE_Y[i] * v;
+        W[2] += lu::data::CIE_Z[i] * v;
+    }
+    W[0] /= W[1];
+    W[2] /= W[1];
+    W[1] = 1;
+    // Columns: XYZ of the primaries with Y = 1, scaled so that rgb (1, 1, 1) maps to W.
+    const double *prim[3] = {cs.r, cs.g, cs.b};
+    double P[3][3], Pinv[3][3];
+    for (int c = 0; c < 3; ++c) {
+        P[0][c] = prim[c][0] / prim[c][1];
+        P[1][c] = 1;
+        P[2][c] = (1 - prim[c][0] - prim[c][1]) / prim[c][1];
+    }
+    Invert3(P, Pinv);
+    for (int c = 0; c < 3; ++c) {
+        double s = Pinv[c][0] * W[0] + Pinv[c][1] * W[1] + Pinv[c][2] * W[2];
+        for (int r = 0; r < 3; ++r) g.rgbToXYZ[r][c] = P[r][c] * s;
+    }
+    Invert3(g.rgbToXYZ, g.xyzToRGB);
+    return g;
+}
 
 struct Tables {
     double cmf[3][CoarseSamples], illum[CoarseSamples];
@@ -37,6 +116,7 @@ struct Tables {
     double rgbWeights[3][FineSamples];    // quadrature weight * illuminant * (XYZ->RGB of CMFs)
     double rgbWeightsL[3][FineSamples], rgbWeightsL2[3][FineSamples];  // times l and l^2
     double whitepoint[3];                 // XYZ of the illuminant
+    const double (*rgbToXYZ)[3];          // the gamut's matrix
 };
 
 double Interp5nm(const double *data, double lambda) {
@@ -46,32 +126,40 @@ double Interp5nm(const double *data, double lambda) {
     return (1 - w) * data[i] + w * data[i + 1];
 }
 
-void InitTables(Tables &t) {
-    const lu::data::UniformSpectrumData *d65 = nullptr;
-    for (const auto &il : lu::data::Illuminants)
-        if (std::string_view(il.name) == "stdillum-D65") d65 = &il;
-    if (!d65) { std::fprintf(stderr, "rgb2spec_gen: no D65 table\n"); std::exit(1); }
+void InitTables(Tables &t, const Gamut &g) {
+    t.rgbToXYZ = g.rgbToXYZ;
+    double h = (LambdaMax - LambdaMin) / (FineSamples - 1);
+    auto simpson = [&](int i) {  // composite Simpson 3/8: weights 1 3 3 2 3 3 2 ... 3 3 1, times 3h/8
+        double w = 3.0 / 8.0 * h;
+        if (i != 0 && i != FineSamples - 1) w *= (i % 3 == 0) ? 2 : 3;
+        return w;
+    };
     for (int i = 0; i < CoarseSamples; ++i) {
         double lambda = LambdaMin + 5 * i;
         t.cmf[0][i] = lu::data::CIE_X[5 * i];
         t.cmf[1][i] = lu::data::CIE_Y[5 * i];
         t.cmf[2][i] = lu::data::CIE_Z[5 * i];
-        int j = int(std::lround((lambda - d65->lambda0) / d65->step));
-        t.illum[i] = double(d65->values[j]) / D65Norm;
+        int j = int(std::lround((lambda - g.illum->lambda0) / g.illum->step));
+        t.illum[i] = double(g.illum->values[j]);
     }
+    double norm = g.illumNorm;
+    if (norm == 0) {  // unit luminance with the quadrature used for the fit
+        for (int i = 0; i < FineSamples; ++i) {
+            double lambda = LambdaMin + i * h;
+            norm += Interp5nm(t.cmf[1], lambda) * Interp5nm(t.illum, lambda) * simpson(i);
+        }
+    }
+    for (int i = 0; i < CoarseSamples; ++i) t.illum[i] /= norm;
     for (int c = 0; c < 3; ++c) t.whitepoint[c] = 0;
-    double h = (LambdaMax - LambdaMin) / (FineSamples - 1);
     for (int i = 0; i < FineSamples; ++i) {
         double lambda = LambdaMin + i * h;
         double xyz[3] = {Interp5nm(t.cmf[0], lambda), Interp5nm(t.cmf[1], lambda), Interp5nm(t.cmf[2], lambda)};
         double I = Interp5nm(t.illum, lambda);
-        // Composite Simpson 3/8: weights 1 3 3 2 3 3 2 ... 3 3 1, times 3h/8.
-        double w = 3.0 / 8.0 * h;
-        if (i != 0 && i != FineSamples - 1) w *= (i % 3 == 0) ? 2 : 3;
+        double w = simpson(i);
         t.lambdaNorm[i] = (lambda - LambdaMin) / (LambdaMax - LambdaMin);
         for (int k = 0; k < 3; ++k) {
             t.rgbWeights[k][i] = 0;
-            for (int j = 0; j < 3; ++j) t.rgbWeights[k][i] += XYZToSRGB[k][j] * xyz[j] * I * w;
+            for (int j = 0; j < 3; ++j) t.rgbWeights[k][i] += g.xyzToRGB[k][j] * xyz[j] * I * w;
         }
         for (int k = 0; k < 3; ++k) {
             t.rgbWeightsL[k][i] = t.rgbWeights[k][i] * t.lambdaNorm[i];
@@ -94,12 +182,12 @@ double LabFDeriv(double v) {
     return 1.0 / (LabDelta * LabDelta * 3.0);
 }
 
-// Linear sRGB -> CIELAB relative to the illuminant's white point (in place); if dLab is given,
+// Linear RGB of the gamut -> CIELAB relative to the illuminant's white point (in place); if dLab is given,
 // also the Jacobian dLab/drgb.
 void RGBToLab(const Tables &t, double p[3], double dLab[3][3] = nullptr) {
     double xyz[3] = {0, 0, 0};
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) xyz[i] += SRGBToXYZ[i][j] * p[j];
+        for (int j = 0; j < 3; ++j) xyz[i] += t.rgbToXYZ[i][j] * p[j];
     double f[3], df[3];
     for (int i = 0; i < 3; ++i) {
         f[i] = LabF(xyz[i] / t.whitepoint[i]);
@@ -113,7 +201,7 @@ void RGBToLab(const Tables &t, double p[3], double dLab[3][3] = nullptr) {
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
                 dLab[i][j] = 0;
-                for (int k = 0; k < 3; ++k) dLab[i][j] += D[i][k] * df[k] * SRGBToXYZ[k][j];
+                for (int k = 0; k < 3; ++k) dLab[i][j] += D[i][k] * df[k] * t.rgbToXYZ[k][j];
             }
     }
 }
@@ -215,14 +303,17 @@ float SmoothStep(float x) { return x * x * (3.0f - 2.0f * x); }
 }  // namespace
 
 int main(int argc, char **argv) {
-    if (argc != 3) {
-        std::fprintf(stderr, "usage: %s <resolution> <output.bin>\n", argv[0]);
+    if (argc != 3 && argc != 4) {
+        std::fprintf(stderr, "usage: %s <resolution> <output.bin> [srgb|dci-p3|rec2020|aces2065-1]\n", argv[0]);
         return 1;
     }
+    int gamut = argc == 4 ? lu::data::ColorSpaceIndex(argv[3]) : int(lu::ColorSpaceId::SRGB);
+    if (gamut < 0) { std::fprintf(stderr, "rgb2spec_gen: unknown color space %s\n", argv[3]); return 1; }
     const int res = std::atoi(argv[1]);
     if (res < 2) { std::fprintf(stderr, "rgb2spec_gen: bad resolution\n"); return 1; }
+    const Gamut g = MakeGamut(gamut);  // outlives t (t points at its matrix)
     Tables t;
-    InitTables(t);
+    InitTables(t, g);
 
     std::vector<float> zNodes(res);
     for (int k = 0; k < res; ++k) zNodes[k] = float(SmoothStep(SmoothStep(float(k / double(res - 1)))));
