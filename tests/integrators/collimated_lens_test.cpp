@@ -168,12 +168,7 @@ Image RenderLens(const HostScene &scene, uint32_t firstPass, int passes, uint32_
     settings.integrator = IntegratorKind::RegPath;
     settings.regAngle = kSigma0 * 180 / M_PI;
     settings.regRadius = regRadius;
-    FilmAccumulator film;
-    film.Resize(scene.View().film.width, scene.View().film.height);
-    film.passes = firstPass;
-    RenderStats st = RenderCPU(scene, settings, film);
-    EXPECT_EQ(st.rejected, 0u);
-    return film.Resolve(scene.View().film);
+    return RenderFromPass(scene, settings, firstPass);
 }
 
 struct Stat {
@@ -321,12 +316,7 @@ TEST(CollimatedFog, BeamInFogHasTheSingleScatteringLineBrightness) {
         RenderSettings settings = TestSettings(*scene, int(late) + 256, 1, 5 + s);
         settings.integrator = IntegratorKind::RegPath;
         settings.regAngle = kSigma0 * 180 / M_PI;
-        FilmAccumulator film;
-        film.Resize(kFogW, kFogH);
-        film.passes = late;
-        RenderStats st = RenderCPU(*scene, settings, film);
-        EXPECT_EQ(st.rejected, 0u);
-        Image im = film.Resolve(scene->View().film);
+        Image im = RenderFromPass(*scene, settings, late);
         for (int b = 0; b < 2; ++b) {
             double sum = 0;
             for (int y = bands[b].y0; y < bands[b].y1; ++y)

@@ -62,12 +62,7 @@ Image RenderBeamPasses(const HostScene &scene, bool regularize, uint32_t firstPa
     EXPECT_DOUBLE_EQ(settings.regLambda, 1.0 / 8);
     settings.regLambda = 1.0 / 6;
     settings.lightStrategy = LightStrategy(strategy);
-    FilmAccumulator film;
-    film.Resize(scene.View().film.width, scene.View().film.height);
-    film.passes = firstPass;
-    RenderStats st = RenderCPU(scene, settings, film);
-    EXPECT_EQ(st.rejected, 0u);
-    return film.Resolve(scene.View().film);
+    return RenderFromPass(scene, settings, firstPass);
 }
 
 struct SpotMoments {

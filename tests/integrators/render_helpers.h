@@ -74,6 +74,17 @@ inline RenderResultForTest RenderScene(const HostScene &scene, const RenderSetti
     return r;
 }
 
+// Renders settings.spp - firstPass passes starting at pass firstPass (the regularization
+// schedule's N = firstPass + 1 ...), expecting no rejected sample.
+inline Image RenderFromPass(const HostScene &scene, const RenderSettings &settings, uint32_t firstPass) {
+    FilmAccumulator film;
+    film.Resize(scene.View().film.width, scene.View().film.height);
+    film.passes = firstPass;
+    RenderStats st = RenderCPU(scene, settings, film);
+    EXPECT_EQ(st.rejected, 0u);
+    return film.Resolve(scene.View().film);
+}
+
 // regAngle in radians (RenderSettings::regAngle is in degrees).
 inline RenderResultForTest RenderScene(const HostScene &scene, int spp, int maxDepth, uint32_t seed = 0, int threads = 0,
                                        int strategy = 0, bool regularize = false, double regRadius = 0, double regAngle = 0) {
