@@ -154,12 +154,7 @@ Image RenderPasses(const HostScene &scene, bool regularize, uint32_t firstPass, 
     settings.integrator = regularize ? IntegratorKind::RegPath : IntegratorKind::Path;
     settings.regRadius = radius;
     settings.regAngle = 0.01 * 180 / M_PI;
-    FilmAccumulator film;
-    film.Resize(scene.View().film.width, scene.View().film.height);
-    film.passes = firstPass;
-    RenderStats st = RenderCPU(scene, settings, film);
-    EXPECT_EQ(st.rejected, 0u);
-    return film.Resolve(scene.View().film);
+    return RenderFromPass(scene, settings, firstPass);
 }
 
 }  // namespace
