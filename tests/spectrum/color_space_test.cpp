@@ -4,6 +4,7 @@
 // through each space's generated table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -27,7 +28,8 @@ std::array<double, 3> IlluminantWhite(const char *name) {
     double W[3] = {0, 0, 0};
     for (int i = 0; i < data::CIESamples; ++i) {
         double x = (360.0 + i - il->lambda0) / il->step;
-        int k = int(x);
+        // The last sample (830 nm) is the table's last value: no interpolation past its end.
+        int k = std::clamp(int(x), 0, il->n - 2);
         double v = il->values[k] + (x - k) * (il->values[k + 1] - il->values[k]);
         W[0] += data::CIE_X[i] * v;
         W[1] += data::CIE_Y[i] * v;
