@@ -8,6 +8,7 @@
 #include <string>
 
 #include "integrators/render_helpers.h"
+#include "lucerna/scene/pmj02_build.h"
 #include "lucerna/scene/sampler_build.h"
 
 namespace lu::test {
@@ -44,7 +45,7 @@ Agreement Compare(const std::vector<double> &a, const std::vector<double> &b, do
 
 }  // namespace
 
-TEST(SamplerRender, HaltonAndSobolAgreeWithIndependent) {
+TEST(SamplerRender, HaltonSobolAndPMJ02BNAgreeWithIndependent) {
     BuildOptions opts;
     opts.resX = 32;
     opts.resY = 32;
@@ -57,6 +58,9 @@ TEST(SamplerRender, HaltonAndSobolAgreeWithIndependent) {
         o.randomization = rnd;
         std::string report;
         scene->sampler = MakeSampler(name, spp, int(seed), scene->film.width, scene->film.height, o, &report);
+        scene->pmjPoints.clear();
+        if (scene->sampler.kind == SamplerKind::PMJ02BN)
+            scene->pmjPoints = BuildPMJ02BNTables(spp, 5, &scene->sampler.pmjTileSize);
         return BlockMeans(RenderScene(*scene, spp, depth, seed).image, 8);
     };
     std::vector<double> ind1 = render("independent", "", 1), ind2 = render("independent", "", 2);
@@ -70,7 +74,7 @@ TEST(SamplerRender, HaltonAndSobolAgreeWithIndependent) {
     for (size_t i = 0; i < ref.size(); ++i) ref[i] = 0.5 * (ind1[i] + ind2[i]);
     const char *configs[][2] = {{"halton", "permutedigits"}, {"halton", "owen"}, {"halton", "none"},
                                 {"sobol", "fastowen"},       {"sobol", "owen"},  {"sobol", "permutedigits"},
-                                {"sobol", "none"}};
+                                {"sobol", "none"},           {"pmj02bn", ""}};
     // The block noise has heavy tails (fireflies of the reference renders): a block may stray
     // to 5-6 sigma; the rms over the 16 blocks is the sharper criterion.
     const double kMaxZ = 7, kRmsZ = 1.8;
@@ -87,6 +91,33 @@ TEST(SamplerRender, HaltonAndSobolAgreeWithIndependent) {
         EXPECT_TRUE(biased.rmsZ >= kRmsZ || biased.maxZ >= kMaxZ)
             << c[0] << "/" << c[1] << ": the test cannot see a 4% bias (rms z " << biased.rmsZ << ")";
     }
+}
+
+}  // namespace lu::test
+
+namespace lu::test {
+
+// Option "disablewavelengthjitter": every camera sample takes pbrt-v4's wavelengths of u = 0.5
+// (about 546, 617, 830 and 479 nm). An environment emitting only in 575-590 nm, seen directly,
+// is then black in every pixel; with the jitter it is not.
+TEST(SamplerRender, DisabledWavelengthJitterUsesFixedWavelengths) {
+    const std::string world =
+        "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\n"
+        "Camera \"perspective\" \"float fov\" 45\n"
+        "WorldBegin\n"
+        "LightSource \"infinite\" \"spectrum L\" [ 570 0 575 1 585 1 590 0 ]\n";
+    auto fixed = LoadSceneText("wavelength_jitter_off", "Option \"disablewavelengthjitter\" true\n" + world);
+    auto jittered = LoadSceneText("wavelength_jitter_on", world);
+    ASSERT_TRUE(fixed->film.disableWavelengthJitter);
+    Image a = RenderScene(*fixed, TestSettings(*fixed, 16, 1)).image;
+    Image b = RenderScene(*jittered, TestSettings(*jittered, 16, 1)).image;
+    double sumA = 0, sumB = 0;
+    for (int c = 0; c < 3; ++c) {
+        sumA += std::abs(RegionMean(a, c, 0, 0, 8, 8).mean);
+        sumB += RegionMean(b, c, 0, 0, 8, 8).mean;
+    }
+    EXPECT_EQ(sumA, 0.0);
+    EXPECT_GT(sumB, 1e-3);
 }
 
 }  // namespace lu::test

@@ -77,6 +77,13 @@ TEST(Texture, ImageBilerpWrapScaleInvert) {
     EXPECT_NEAR(EvalFloatTexture(t, Ctx(1.0f, 0.75f), scene), 11.0f, 1e-5f);
     images[0].wrap = WrapMode::Black;
     EXPECT_NEAR(EvalFloatTexture(t, Ctx(1.0f, 0.75f), scene), 5.5f, 1e-5f);
+    // Octahedral: past the right edge the neighbour of texel (1, 0) is texel (1, 1) (x mirrored
+    // across u = 1, y across v = 0.5): image row 0 = 10 11, row 1 = 12 13.
+    images[0].wrap = WrapMode::OctahedralSphere;
+    EXPECT_NEAR(EvalFloatTexture(t, Ctx(1.0f, 0.75f), scene), 12.0f, 1e-5f);
+    // Past the top edge, texel (0, -1) is texel (1, 1) (x mirrored across u = 0.5, y -> -y, as
+    // pbrt-v4's RemapPixelCoords writes it): at s = 0.25 on the edge, between 10 and 13.
+    EXPECT_NEAR(EvalFloatTexture(t, Ctx(0.25f, 1.0f), scene), 11.5f, 1e-5f);
     images[0].wrap = WrapMode::Repeat;
     // Scale, invert (1 - v, clamped at 0) and the uv mapping.
     t.scale = 0.05f;

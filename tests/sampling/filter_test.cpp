@@ -51,7 +51,13 @@ TEST(Filter, MakeFilterDefaults) {
     EXPECT_FLOAT_EQ(m2.radiusY, 2.5f);
     EXPECT_FLOAT_EQ(m2.B, 0.f);
     EXPECT_FLOAT_EQ(m2.C, 0.5f);
-    EXPECT_THROW(MakeFilter("sinc"), std::invalid_argument);
+    FilterData s = MakeFilter("sinc");
+    EXPECT_EQ(s.kind, FilterKind::LanczosSinc);
+    EXPECT_FLOAT_EQ(s.radiusX, 4.f);
+    EXPECT_FLOAT_EQ(s.radiusY, 4.f);
+    EXPECT_FLOAT_EQ(s.tau, 3.f);
+    EXPECT_FLOAT_EQ(MakeFilter("sinc", 2.f, 3.f, -1, NAN, NAN, 2.f).tau, 2.f);
+    EXPECT_THROW(MakeFilter("lanczos"), std::invalid_argument);
 }
 
 TEST(Filter, IntegralsMatchAnalyticValues) {
@@ -67,12 +73,30 @@ TEST(Filter, IntegralsMatchAnalyticValues) {
     // And numerically, for several parameter sets.
     const FilterData filters[] = {MakeFilter("box", 0.7f, 1.2f),        MakeFilter("triangle", 1.f, 2.f),
                                   MakeFilter("gaussian"),                MakeFilter("gaussian", 2.f, 1.f, 0.8f),
-                                  MakeFilter("mitchell"),                MakeFilter("mitchell", 1.f, 3.f, -1, 0.f, 0.5f)};
+                                  MakeFilter("mitchell"),                MakeFilter("mitchell", 1.f, 3.f, -1, 0.f, 0.5f),
+                                  MakeFilter("sinc"),                    MakeFilter("sinc", 2.f, 3.f, -1, NAN, NAN, 2.f)};
     for (const FilterData &f : filters) {
         double num = Integrate2D([&](double x, double y) { return double(EvalFilter(f, Vec2f(Float(x), Float(y)))); },
                                  f.radiusX, f.radiusY, 1000);
         EXPECT_NEAR(num, FilterIntegral(f), 2e-3 * std::abs(FilterIntegral(f)) + 1e-6) << int(f.kind);
     }
+}
+
+// The Lanczos-windowed sinc: 1 at the center, zero at the integers (sinc's zeros), negative
+// between 1 and 2, the window's zero at tau, cut at the radius.
+TEST(Filter, SincIsTheWindowedSinc) {
+    FilterData s = MakeFilter("sinc");
+    EXPECT_FLOAT_EQ(EvalFilter(s, Vec2f(0, 0)), 1.f);
+    for (int k = 1; k <= 3; ++k) EXPECT_NEAR(EvalFilter(s, Vec2f(Float(k), 0)), 0.f, 1e-6f) << k;
+    EXPECT_LT(EvalFilter(s, Vec2f(1.5f, 0)), 0.f);
+    EXPECT_GT(EvalFilter(s, Vec2f(2.5f, 0)), 0.f);
+    // sinc(x) sinc(x / 3) at x = 0.5: (sin(pi/2) / (pi/2)) (sin(pi/6) / (pi/6)).
+    double x = 0.5, want = (std::sin(M_PI * x) / (M_PI * x)) * (std::sin(M_PI * x / 3) / (M_PI * x / 3));
+    EXPECT_NEAR(EvalFilter(s, Vec2f(0.5f, 0.5f)), want * want, 1e-6);
+    EXPECT_EQ(EvalFilter(s, Vec2f(4.01f, 0)), 0.f);
+    // With tau = radius = 1 the window's first zero is the support's edge (pbrt-v4's sinc of 1).
+    FilterData s1 = MakeFilter("sinc", 1.f, 1.f, -1, NAN, NAN, 1.f);
+    EXPECT_NEAR(EvalFilter(s1, Vec2f(0.5f, 0)), Sqr(2 / M_PI), 1e-6);
 }
 
 TEST(Filter, MitchellHasNegativeLobes) {
@@ -136,10 +160,12 @@ test::Chi2Result FilterChi2(const FilterData &filter, uint64_t seed, Float (*wei
 TEST(Filter, SampledPositionsFollowAbsFilter) {
     const FilterData filters[] = {MakeFilter("box"), MakeFilter("triangle"), MakeFilter("triangle", 1, 1.5f),
                                   MakeFilter("gaussian"), MakeFilter("mitchell"),
-                                  MakeFilter("mitchell", 1.f, 2.f, -1, 0.f, 0.5f)};
+                                  MakeFilter("mitchell", 1.f, 2.f, -1, 0.f, 0.5f), MakeFilter("sinc"),
+                                  MakeFilter("sinc", 1.5f, 2.5f, -1, NAN, NAN, 2.f)};
     for (const FilterData &f : filters) {
         SCOPED_TRACE(int(f.kind));
-        bool tabulated = f.kind == FilterKind::Gaussian || f.kind == FilterKind::Mitchell;
+        bool tabulated = f.kind == FilterKind::Gaussian || f.kind == FilterKind::Mitchell ||
+                         f.kind == FilterKind::LanczosSinc;
         ASSERT_EQ(tabulated, FilterScene(f).f.distribution != NoIndex);
         EXPECT_TRUE(test::Chi2Accepts(FilterChi2(f, 17), 1e-4, 6));
     }
@@ -149,6 +175,7 @@ TEST(Filter, SampledPositionsFollowAbsFilter) {
 // (sampling f instead of |f| would drop the negative lobes), and a flatter gaussian (|f|^0.8).
 TEST(Filter, SampledPositionsRejectWrongDensities) {
     EXPECT_TRUE(test::Chi2Rejects(FilterChi2(MakeFilter("mitchell"), 17, [](Float v) { return std::max(v, Float(0)); })));
+    EXPECT_TRUE(test::Chi2Rejects(FilterChi2(MakeFilter("sinc"), 17, [](Float v) { return std::max(v, Float(0)); })));
     EXPECT_TRUE(test::Chi2Rejects(FilterChi2(MakeFilter("gaussian", 1.5f, 1.5f, 0.5f), 17, [](Float v) {
         return std::pow(std::abs(v), Float(0.8));  // a flatter bell: |f|^0.8
     })));
@@ -156,7 +183,8 @@ TEST(Filter, SampledPositionsRejectWrongDensities) {
 
 TEST(Filter, WeightsAreFOverPdf) {
     for (const FilterData &filter : {MakeFilter("box"), MakeFilter("triangle"), MakeFilter("gaussian"),
-                                     MakeFilter("mitchell"), MakeFilter("gaussian", 1.f, 2.f, 0.4f)}) {
+                                     MakeFilter("mitchell"), MakeFilter("gaussian", 1.f, 2.f, 0.4f), MakeFilter("sinc"),
+                                     MakeFilter("sinc", 2.f, 1.f, -1, NAN, NAN, 1.5f)}) {
         FilterScene fs(filter);
         const FilterData &f = fs.f;
         RNG rng(3);
@@ -192,12 +220,17 @@ TEST(Filter, WeightsAreFOverPdf) {
             sum += s.weight;
             sum2 += double(s.weight) * s.weight;
         }
-        if (f.kind == FilterKind::Mitchell) EXPECT_GT(negatives, 0);
+        if (f.kind == FilterKind::Mitchell || f.kind == FilterKind::LanczosSinc) EXPECT_GT(negatives, 0);
         else EXPECT_EQ(negatives, 0);
         // E[weight] = integral of the (tabulated) filter, close to the analytic integral.
         double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
         EXPECT_NEAR(mean, signedIntegral, 5 * se + 1e-6);
         EXPECT_NEAR(signedIntegral, FilterIntegral(f), 1e-2 * FilterIntegral(f));
+        // The film's divisor floor (FilmData::filterWeightFloor) is half that expectation for the
+        // filters with negative lobes and 0 for the others.
+        Float floor = FilterWeightFloor(f, fs.dists);
+        if (negatives > 0) { EXPECT_NEAR(floor, 0.5 * signedIntegral, 1e-4 * signedIntegral); }
+        else EXPECT_EQ(floor, 0.f);
     }
 }
 

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
+#include "lucerna/scene/pmj02_build.h"
 #include "lucerna/scene/sampler_build.h"
 #include "lucerna/sampling/sampler.h"
 #include "support/test_support.h"
@@ -22,16 +24,35 @@ struct Config {
 const Config kConfigs[] = {{"independent", ""}, {"zsobol", "fastowen"}, {"zsobol", "owen"},
                            {"zsobol", "permutedigits"}, {"paddedsobol", "fastowen"}, {"stratified", ""},
                            {"halton", "permutedigits"}, {"sobol", "fastowen"}, {"sobol", "owen"},
-                           {"sobol", "permutedigits"}};
+                           {"sobol", "permutedigits"}, {"pmj02bn", ""}};
 
-// Halton and Sobol take the position in the pixel from unrandomized dimensions 0 and 1 (pbrt-v4).
-bool GlobalKind(const char *name) { return std::string(name) == "halton" || std::string(name) == "sobol"; }
+// Halton and Sobol take the position in the pixel from unrandomized dimensions 0 and 1, and
+// pmj02bn from its pixel table (pbrt-v4): the pixel sample is seed-independent, and these start
+// their other dimensions at 2.
+bool GlobalKind(const char *name) {
+    return std::string(name) == "halton" || std::string(name) == "sobol" || std::string(name) == "pmj02bn";
+}
+
+// The pmj02bn tables by sample count, kept for the tests' samplers.
+const std::vector<Vec2f> &PMJTables(int spp, int *tile) {
+    static std::map<int, std::pair<std::vector<Vec2f>, int>> tables;
+    auto it = tables.find(spp);
+    if (it == tables.end()) {
+        int t = 0;
+        std::vector<Vec2f> v = BuildPMJ02BNTables(spp, 99, &t);
+        it = tables.emplace(spp, std::make_pair(std::move(v), t)).first;
+    }
+    *tile = it->second.second;
+    return it->second.first;
+}
 
 Sampler Make(const char *name, int spp, const char *randomization = "", int seed = 0, int w = 64, int h = 48) {
     SamplerOptions o;
     o.randomization = randomization;
     std::string report;
-    return MakeSampler(name, spp, seed, w, h, o, &report);
+    Sampler s = MakeSampler(name, spp, seed, w, h, o, &report);
+    if (s.kind == SamplerKind::PMJ02BN) s.pmjPoints = PMJTables(s.samplesPerPixel, &s.pmjTileSize).data();
+    return s;
 }
 
 // The draws of one pixel sample: 1D, 2D, 1D, 1D, 2D, 2D (dims 0..9).
@@ -245,6 +266,7 @@ TEST(Sampler, IndicesPastSamplesPerPixel) {
         for (int i = 0; i < 16; ++i) same += pass0[i].x == pass1[i].x;
         EXPECT_LT(same, 3) << c.name;
         // (Halton and Sobol continue their global sequence: a pixel's later samples are not a net.)
+        // (pmj02bn's points are rotated toroidally per pixel: stratified in 1D, no longer a net.)
         if (std::string(c.name) != "independent" && std::string(c.name) != "stratified" && !GlobalKind(c.name)) {
             std::string why;
             EXPECT_TRUE(IsNet(pass1, 4, &why)) << c.name << ": " << why;
@@ -293,8 +315,10 @@ TEST(Sampler, MakeSamplerNamesAndReports) {
     EXPECT_TRUE(report.empty()) << report;
     report.clear();
     s = MakeSampler("pmj02bn", 64, 0, 32, 32, {}, &report);
-    EXPECT_EQ(s.kind, SamplerKind::ZSobol);
-    EXPECT_TRUE(report.empty()) << report;   // the scene builder reports the substitution, located
+    EXPECT_EQ(s.kind, SamplerKind::PMJ02BN);
+    EXPECT_TRUE(report.empty()) << report;
+    s = MakeSampler("pmj02bn", 32, 0, 32, 32, {}, &report);
+    EXPECT_NE(report.find("power-of-4"), std::string::npos) << report;   // pbrt-v4's warning
     report.clear();
     s = MakeSampler("bogus", 6, 0, 32, 32, {}, &report);
     EXPECT_EQ(s.kind, SamplerKind::ZSobol);
@@ -317,6 +341,53 @@ TEST(Sampler, MakeSamplerNamesAndReports) {
     o.randomization = "owen";
     s = MakeSampler("zsobol", 16, 0, 8, 8, o, &report);
     EXPECT_EQ(s.randomize, RandomizeStrategy::Owen);
+}
+
+// pmj02bn: every pixel's share of the first set is a (0,2)-net of spp points (the set is one over
+// the tile of pixels); the pixel samples are the pixel's own, with no dimension consumed; 1D
+// samples take each of the spp strata once; a 2D dimension's samples over a pixel are the set's
+// first spp points (a net) rotated toroidally, so they keep one point per 1/sqrt(spp) column
+// modulo the rotation.
+TEST(Sampler, PMJ02BNIsStratifiedAsPbrtV4) {
+    for (int spp : {1, 4, 16, 64, 256}) {
+        int tile = 0;
+        const std::vector<Vec2f> &t = PMJTables(spp, &tile);
+        int log4 = 0;
+        while ((1 << (2 * log4)) < spp) ++log4;
+        EXPECT_EQ(tile, 1 << (8 - log4)) << spp;   // tile^2 spp = 65536
+        ASSERT_EQ(t.size(), size_t(tile) * tile * spp + size_t(kPMJ02BNSets) * spp);
+        Sampler s = Make("pmj02bn", spp, "", 7, 300, 200);
+        for (int pixel = 0; pixel < 5; ++pixel) {
+            int x = (pixel * 71) % 300, y = (pixel * 43) % 200;
+            std::vector<Vec2f> pts;
+            std::vector<int> strata(spp, 0);
+            for (int i = 0; i < spp; ++i) {
+                s.StartPixelSample(x, y, i, 0);
+                pts.push_back(s.GetPixel2D());
+                EXPECT_EQ(s.dimension, 2);
+                strata[std::min(int(s.Get1D() * spp), spp - 1)]++;
+            }
+            std::string why;
+            EXPECT_TRUE(IsNet(pts, 2 * log4, &why)) << "spp " << spp << " pixel " << x << "," << y << ": " << why;
+            for (int i = 0; i < spp; ++i) ASSERT_EQ(strata[i], 1) << "spp " << spp << " stratum " << i;
+        }
+        // Pixels a tile apart share their pixel samples; neighbours do not.
+        s.StartPixelSample(3, 5, 0);
+        Vec2f a = s.GetPixel2D();
+        s.StartPixelSample(3 + tile, 5 + tile, 0);
+        Vec2f b = s.GetPixel2D();
+        EXPECT_EQ(a.x, b.x);
+        EXPECT_EQ(a.y, b.y);
+        for (int k = 0; k < kPMJ02BNSets; ++k) {   // each set's first spp points: a net
+            std::vector<Vec2f> set(t.begin() + ptrdiff_t(size_t(tile) * tile * spp + size_t(k) * spp),
+                                   t.begin() + ptrdiff_t(size_t(tile) * tile * spp + size_t(k + 1) * spp));
+            std::string why;
+            EXPECT_TRUE(IsNet(set, 2 * log4, &why)) << "spp " << spp << " set " << k << ": " << why;
+        }
+    }
+    // Sample counts above pbrt-v4's table size are refused.
+    int tile = 0;
+    EXPECT_THROW(BuildPMJ02BNTables(kPMJ02BNSamples * 2, 1, &tile), std::invalid_argument);
 }
 
 TEST(Sampler, ZSobolMatchesPbrtValues) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "lucerna/camera/camera.h"
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/image/image.h"
 #include "lucerna/lights/lights.h"
@@ -833,9 +834,90 @@ TEST(Errors, AlbedoAboveOne) { ExpectError("Material \"diffuse\" \"rgb reflectan
 TEST(Errors, UnknownIntegratorAndFilter) {
     SceneError e = ErrorOf("Integrator \"photonmap\"\nWorldBegin\n");
     EXPECT_TRUE(Contains(e.Message(), "\"photonmap\"")) << e.Message();
-    SceneError f = ErrorOf("PixelFilter \"sinc\"\nWorldBegin\n");
-    EXPECT_TRUE(Contains(f.Message(), "\"sinc\"")) << f.Message();
+    SceneError f = ErrorOf("PixelFilter \"lanczos\"\nWorldBegin\n");
+    EXPECT_TRUE(Contains(f.Message(), "\"lanczos\"")) << f.Message();
     EXPECT_EQ(f.Loc().line, 1);
+    SceneError t = ErrorOf("PixelFilter \"sinc\"\n  \"float tau\" 0\nWorldBegin\n");
+    EXPECT_TRUE(Contains(t.Message(), "tau")) << t.Message();
+    EXPECT_EQ(t.Loc().line, 2);
+}
+
+// ---- The Option directive (pbrt-v4's BasicSceneBuilder::Option) ----
+
+TEST(OptionDirective, SetsJitterAndSeedAsPbrtV4) {
+    Diagnostics diag;
+    auto s = Build("Option \"disablepixeljitter\" true\nOption \"Disable_Wavelength-Jitter\" true\nOption \"seed\" 7\n" +
+                       std::string(kHeader),
+                   diag);
+    EXPECT_TRUE(s->filter.disableJitter);
+    EXPECT_TRUE(s->film.disableWavelengthJitter);
+    EXPECT_EQ(s->settings.seed, 7u);  // the sampler's default seed
+    EXPECT_TRUE(diag.unsupported.empty());
+    // A Sampler's own "seed" wins; without Options nothing is set.
+    auto t = Build("Option \"seed\" 7\nSampler \"zsobol\" \"integer seed\" 3\n" + std::string(kHeader), diag);
+    EXPECT_EQ(t->settings.seed, 3u);
+    auto u = Build(std::string(kHeader), diag);
+    EXPECT_FALSE(u->filter.disableJitter);
+    EXPECT_FALSE(u->film.disableWavelengthJitter);
+    EXPECT_EQ(u->settings.seed, 0u);
+    // Options that change only pbrt-v4's run are accepted without a report.
+    Diagnostics quiet;
+    Build("Option \"wavefront\" false\nOption \"disabletexturefiltering\" true\nOption \"rendercoordsys\" \"world\"\n" +
+              std::string(kHeader),
+          quiet);
+    Diagnostics baseline;   // the header alone warns of its missing light
+    Build(std::string(kHeader), baseline);
+    EXPECT_TRUE(quiet.unsupported.empty());
+    EXPECT_EQ(quiet.warnings.size(), baseline.warnings.size());
+    // pixelstats and the MSE reference are reported by name, the picture is unchanged.
+    Diagnostics listed;
+    Build("Option \"pixelstats\" true\nOption \"msereferenceimage\" \"ref.exr\"\n" + std::string(kHeader), listed);
+    EXPECT_EQ(listed.unsupported.size(), 2u);
+}
+
+// With the pixel jitter off every camera sample is the pixel center with weight 1 (the filter
+// sample is still drawn: the sampler's dimensions stay pbrt-v4's).
+TEST(OptionDirective, DisabledPixelJitterSamplesThePixelCenter) {
+    Diagnostics diag;
+    auto s = Build("Option \"disablepixeljitter\" true\nPixelFilter \"mitchell\"\n" + std::string(kHeader), diag);
+    SceneView view = s->View();
+    Sampler sampler = s->sampler;
+    for (int i = 0; i < 16; ++i) {
+        sampler.StartPixelSample(3, 5, i, 0);
+        CameraSample cs = GetCameraSample(sampler, 3, 5, s->filter, view);
+        EXPECT_EQ(cs.pFilm.x, 3.5f);
+        EXPECT_EQ(cs.pFilm.y, 5.5f);
+        EXPECT_EQ(cs.filterWeight, 1.f);
+    }
+    s->filter.disableJitter = false;
+    int offCenter = 0;
+    for (int i = 0; i < 16; ++i) {
+        sampler.StartPixelSample(3, 5, i, 0);
+        offCenter += GetCameraSample(sampler, 3, 5, s->filter, view).pFilm.x != 3.5f;
+    }
+    EXPECT_GT(offCenter, 12);
+}
+
+TEST(OptionDirective, BadOptionsAreLocated) {
+    struct Case {
+        const char *text;
+        int line;
+        const char *what;
+    };
+    const Case cases[] = {
+        {"# comment\nOption \"fastmode\" true\n", 2, "unknown option"},
+        {"Option \"disablepixeljitter\" yes\n", 1, "true or false"},
+        {"Option \"disablepixeljitter\" \"true\"\n", 1, "true or false"},
+        {"\nOption \"seed\" 1.5\n", 2, "integer"},
+        {"Option \"rendercoordsys\" \"screen\"\n", 1, "coordinate system"},
+        {"Option \"rendercoordsys\" world\n", 1, "quoted string"},
+        {"Option \"forcediffuse\" true\n", 1, "forcediffuse"},
+    };
+    for (const Case &c : cases) {
+        SceneError e = ErrorOf(std::string(c.text) + kHeader);
+        EXPECT_TRUE(Contains(e.Message(), c.what)) << c.text << " -> " << e.Message();
+        EXPECT_EQ(e.Loc().line, c.line) << e.Message();
+    }
 }
 
 // ---- Shape alpha (pbrt-v4's getAlphaTexture) ----

@@ -219,7 +219,9 @@ TEST(Parser, OptionsColorSpaceAndSceneWideEntities) {
         "Sampler \"zsobol\"\nIntegrator \"path\" \"integer maxdepth\" 5\nPixelFilter \"box\"\nAccelerator \"bvh\"\n"
         "WorldBegin\n");
     ASSERT_EQ(d.options.size(), 1u);
-    EXPECT_EQ(d.options[0].first, "disablepixeljitter true");
+    EXPECT_EQ(d.options[0].name, "disablepixeljitter");
+    EXPECT_EQ(d.options[0].value, "true");
+    EXPECT_EQ(d.options[0].loc.line, 1);
     EXPECT_EQ(d.film.colorSpace, uint8_t(ColorSpaceId::Rec2020));  // the ColorSpace in effect at Film
     EXPECT_EQ(d.film.name, "rgb");
     EXPECT_EQ(d.film.params.GetOneInt("xresolution", 0), 64);

@@ -349,8 +349,8 @@ TEST(TextureBuild, Errors) {
                 "unknown color encoding");
     ExpectError("Texture \"i\" \"float\" \"imagemap\" \"string filename\" \"none.png\"\n  \"string filter\" \"gaussian\"\n", 5,
                 "unknown texture filter");
-    ExpectError("Texture \"i\" \"float\" \"imagemap\" \"string filename\" \"none.png\"\n  \"string wrap\" \"octahedralsphere\"\n",
-                5, "octahedralsphere");
+    ExpectError("Texture \"i\" \"float\" \"imagemap\" \"string filename\" \"none.png\"\n  \"string wrap\" \"octahedral\"\n",
+                5, "unknown wrap mode");
     ExpectError("Texture \"i\" \"float\" \"imagemap\" \"string filename\" \"none.png\"\n", 4, "none.png");
     ExpectError("Texture \"m\" \"float\" \"mix\"\n  \"texture amount\" \"nothing\"\n", 5, "nothing");
     ExpectError("Texture \"m\" \"spectrum\" \"mix\"\n  \"texture amount\" \"sp\"\nTexture \"sp\" \"spectrum\" \"constant\"\n", 5,

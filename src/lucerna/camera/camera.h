@@ -94,11 +94,13 @@ struct CameraSample {
 
 // pbrt-v4's GetCameraSample: the filter offset from sampler.GetPixel2D(), then one dimension for
 // time and two for the lens, in that order. pFilm = pixel + (0.5, 0.5) + filter offset (summed
-// in that order: the renderer's rounding).
+// in that order: the renderer's rounding). With the filter's disableJitter (Option
+// "disablepixeljitter") the offset is 0 and the weight 1, as pbrt-v4.
 // (pbrt-v4's integrators draw the wavelength sample with Get1D() before calling this.)
 LU_INLINE CameraSample GetCameraSample(Sampler &sampler, int px, int py, const FilterData &filter,
                                        const SceneView &scene) {
     FilterSample fs = SampleFilter(filter, scene, sampler.GetPixel2D());
+    if (filter.disableJitter) fs = {Vec2f(0, 0), Float(1)};   // pbrt-v4: the sample is still drawn
     CameraSample cs;
     cs.pFilm = Vec2f(Float(px) + 0.5f + fs.p.x, Float(py) + 0.5f + fs.p.y);
     cs.time = sampler.Get1D();

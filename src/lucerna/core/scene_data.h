@@ -21,7 +21,7 @@ struct Span {
 
 // ---- Images and textures ----
 
-enum class WrapMode : uint8_t { Repeat, Clamp, Black };
+enum class WrapMode : uint8_t { Repeat, Clamp, Black, OctahedralSphere };
 
 // An image of float texels (channels interleaved), stored in SceneView::texels from `offset`.
 struct ImageData {
@@ -375,14 +375,16 @@ struct CameraData {
     uint32_t medium = NoIndex;    // the medium camera rays start in (CameraBegin's outside medium)
 };
 
-enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell };
+enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell, LanczosSinc };
 
 struct FilterData {
     FilterKind kind = FilterKind::Gaussian;
     Float radiusX = 1.5f, radiusY = 1.5f;
     Float sigma = 0.5f;          // gaussian
     Float B = 1.f / 3, C = 1.f / 3;  // mitchell
+    Float tau = 3;               // sinc: the Lanczos window's number of sinc periods
     uint32_t distribution = NoIndex;  // tabulated filter importance distribution (Distribution2D index)
+    bool disableJitter = false;  // Option "disablepixeljitter": every sample at the pixel center, weight 1
 };
 
 struct FilmData {
@@ -390,6 +392,11 @@ struct FilmData {
     Float imagingRatio = 1;      // exposure time * iso / 100
     Float xyzToOutput[3][3];     // XYZ -> linear RGB of the film's color space (white balance folded in, if any)
     Float maxComponentValue = Infinity;
+    bool disableWavelengthJitter = false;  // Option "disablewavelengthjitter": wavelength sample u = 0.5
+    // The least weight sum a pixel's sums are divided by, per sample (FilmAccumulator::Resolve):
+    // half a sample's expected filter weight for filters with negative lobes (mitchell, sinc),
+    // whose signed weight sums can fall near 0 at low sample counts; 0 for the others.
+    Float filterWeightFloor = 0;
 };
 
 // ---- The whole scene, as spans over one upload per array ----
@@ -415,6 +422,7 @@ struct SceneView {
     Span<SpectrumTexture> spectrumTextures;
     Span<Distribution2D> distributions2D;
     Span<Float> distData;
+    Span<Vec2f> pmjPoints;     // the pmj02bn sampler's tables (Sampler::pmjPoints), else empty
     SpectrumTables spectra;
     // RGB -> sigmoid coefficient tables (Jakob & Hanika 2019), one per color space in ColorSpaceId
     // order, concatenated: each 3 * res^3 * 3 entries (res^3 * 3 per maximal component); zNodes

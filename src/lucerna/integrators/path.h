@@ -195,7 +195,8 @@ LU_HD CameraSampleResult RenderSample(int px, int py, uint32_t sampleIndex, Samp
                                       const Tracer &tracer, const PathSettings &ps, PathStats &st) {
     CameraSampleResult r;
     sampler.StartPixelSample(px, py, int(sampleIndex), 0);
-    r.lambda = SampledWavelengths::SampleVisible(sampler.Get1D());
+    Float uLambda = sampler.Get1D();
+    r.lambda = SampledWavelengths::SampleVisible(scene.film.disableWavelengthJitter ? Float(0.5) : uLambda);
     CameraSample cs = GetCameraSample(sampler, px, py, scene.filter, scene);
     r.filterWeight = cs.filterWeight;
     Ray ray;

@@ -5,6 +5,7 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
+#include "lucerna/lights/equal_area.h"
 #include "lucerna/materials/noise.h"
 #include "lucerna/spectrum/rgb_to_spectrum.h"
 
@@ -119,7 +120,8 @@ LU_INLINE void MarbleRGB(const Vec3f &pTexture, Float scale, Float variation, Fl
 // ---- Images ----
 
 // Texel (x, y), channel c, of an image stored row-major with row 0 at the top (pbrt-v4's Image),
-// after applying the image's wrap mode; 0 outside for WrapMode::Black.
+// after applying the image's wrap mode; 0 outside for WrapMode::Black; OctahedralSphere folds
+// across the seams of the equal-area octahedral layout (pbrt-v4's), as the light images do.
 LU_INLINE Float ImageTexel(const ImageData &img, const SceneView &scene, int x, int y, int c) {
     int w = int(img.width), h = int(img.height);
     if (w <= 0 || h <= 0) return 0;
@@ -135,6 +137,7 @@ LU_INLINE Float ImageTexel(const ImageData &img, const SceneView &scene, int x, 
     case WrapMode::Black:
         if (x < 0 || x >= w || y < 0 || y >= h) return 0;
         break;
+    case WrapMode::OctahedralSphere: WrapOctahedral(&x, &y, w, h); break;
     }
     return scene.texels.ptr[img.offset + (uint64_t(y) * uint64_t(w) + uint64_t(x)) * img.channels + uint64_t(c)];
 }

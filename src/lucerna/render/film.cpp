@@ -30,8 +30,13 @@ Image FilmAccumulator::Resolve(const FilmData &film) const {
     img.pixels.assign(size_t(width) * height * 3, 0.f);
     for (size_t p = 0; p < size_t(width) * height; ++p) {
         const double *s = &xyzw[4 * p];
-        if (s[3] == 0) continue;
-        double xyz[3] = {s[0] / s[3], s[1] / s[3], s[2] / s[3]};
+        // pbrt-v4's sum / weightSum, except that the weight sum of a filter with negative lobes
+        // is kept at or above half its expectation: its signed sum can come arbitrarily near 0
+        // (a sinc at 4 spp), which would blow the pixel up. Consistent: the floor acts with a
+        // probability that falls to 0 as the sample count grows.
+        double w = std::max(s[3], double(passes) * double(film.filterWeightFloor));
+        if (w == 0) continue;
+        double xyz[3] = {s[0] / w, s[1] / w, s[2] / w};
         for (int c = 0; c < 3; ++c)
             img.pixels[3 * p + c] = float(film.xyzToOutput[c][0] * xyz[0] + film.xyzToOutput[c][1] * xyz[1] +
                                           film.xyzToOutput[c][2] * xyz[2]);

@@ -79,9 +79,10 @@ void AddCounters(RenderStats &stats, const PassCounters &c, int width) {
 
 }  // namespace
 
-Sampler RenderSampler(const Sampler &sceneSampler, const RenderSettings &settings) {
+Sampler RenderSampler(const Sampler &sceneSampler, const RenderSettings &settings, const SceneView &view) {
     Sampler s = sceneSampler;
     s.seed = int(settings.seed);
+    s.pmjPoints = view.pmjPoints.ptr;
     return s;
 }
 

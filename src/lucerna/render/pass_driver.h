@@ -54,7 +54,8 @@ using RenderPassFn = std::function<const PassBuffer *(const PassRequest &request
 RenderStats RunPasses(const RenderSettings &settings, FilmAccumulator &film, const RenderControl &control,
                       const RenderPassFn &renderPass);
 
-// The render's sampler: the scene's (every option of its Sampler directive) with the seed of the settings.
-Sampler RenderSampler(const Sampler &sceneSampler, const RenderSettings &settings);
+// The render's sampler: the scene's (every option of its Sampler directive) with the seed of the
+// settings and its tables bound to the view's (host or device) arrays.
+Sampler RenderSampler(const Sampler &sceneSampler, const RenderSettings &settings, const SceneView &view);
 
 }  // namespace lu

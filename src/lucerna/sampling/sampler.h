@@ -163,7 +163,10 @@ inline uint8_t ZSobolSimdLevel() {
 }  // namespace detail
 #endif
 
-enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified, Halton, Sobol };
+enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified, Halton, Sobol, PMJ02BN };
+
+// pbrt-v4's pmj02bn tables: 5 sequences of 65536 points (Lucerna builds its own, scene/pmj02_build.h).
+constexpr int kPMJ02BNSets = 5, kPMJ02BNSamples = 65536;
 
 // Usage per pixel sample: StartPixelSample(px, py, index), then Get1D / Get2D / GetPixel2D in a
 // fixed order; each call consumes 1 or 2 dimensions. Starting at dimension d gives the same
@@ -171,7 +174,7 @@ enum class SamplerKind : uint8_t { Independent, ZSobol, PaddedSobol, Stratified,
 //
 // Sample indices >= samplesPerPixel (progressive rendering past the nominal count) are
 // deterministic: index i is split into pass = i / n and r = i % n, where n is the pattern size
-// (2^log2SamplesPerPixel for ZSobol, samplesPerPixel for PaddedSobol/Stratified); pass 0 is
+// (2^log2SamplesPerPixel for ZSobol, samplesPerPixel for PaddedSobol/Stratified/PMJ02BN); pass 0 is
 // exactly pbrt-v4's sample r, and pass k > 0 reuses pattern sample r under an independent
 // randomization (the seed mixed with k; "none" randomization becomes a digit permutation for
 // k > 0). Each pass is thus a fresh stratified set, so the estimate stays unbiased and keeps
@@ -192,6 +195,11 @@ struct Sampler {
     int haltonBaseScale[2] = {1, 1}, haltonBaseExponent[2] = {0, 0}, haltonMultInverse[2] = {0, 0};
     // Sobol: pixel indexing at scale 2^sobolLog2Scale (the resolution rounded up to a power of 2).
     int sobolLog2Scale = 0;
+    // PMJ02BN: pixel samples over a tile of pmjTileSize^2 pixels, then kPMJ02BNSets sets of
+    // samplesPerPixel points (BuildPMJ02BNTables' layout). pmjPoints is bound to the scene's
+    // table (SceneView::pmjPoints, host or device) by RenderSampler before rendering.
+    int pmjTileSize = 1;
+    const Vec2f *pmjPoints = nullptr;
     // ZSobol digit shuffles: 0 scalar, 1 AVX2, 2 AVX-512, 3 AVX-512 VBMI (set by MakeSampler from the host CPU;
     // device code always runs the scalar loop). Every level gives the same values.
     uint8_t simd = 0;
@@ -257,6 +265,12 @@ struct Sampler {
             globalIndex = SobolIntervalToIndex(sobolLog2Scale, uint64_t(uint32_t(index)), x, y);
             dimension = Max(2, dim);
             break;
+        case SamplerKind::PMJ02BN:
+            pass = uint32_t(index) / uint32_t(samplesPerPixel);
+            sampleIndex = int(uint32_t(index) % uint32_t(samplesPerPixel));
+            passSeed = PassSeed(seed, pass);
+            dimension = Max(2, dim);
+            break;
         case SamplerKind::PaddedSobol:
         case SamplerKind::Stratified:
             pass = uint32_t(index) / uint32_t(samplesPerPixel);
@@ -319,6 +333,13 @@ struct Sampler {
             ++dimension;
             return SobolSample(uint64_t(index), 0, Randomizer(), uint32_t(hash >> 32));
         }
+        case SamplerKind::PMJ02BN: {
+            // pbrt-v4: the stratum permuted per pixel and dimension, jittered by a per-pixel offset.
+            int index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(PixelDimensionHash()));
+            Float delta = PixelRotation(dimension);
+            ++dimension;
+            return Min((index + delta) / samplesPerPixel, OneMinusEpsilon);
+        }
         default: {  // Stratified
             uint64_t hash = PixelDimensionHash();
             int stratum = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
@@ -357,6 +378,22 @@ struct Sampler {
             return {SobolSample(uint64_t(index), 0, r, uint32_t(hash)),
                     SobolSample(uint64_t(index), 1, r, uint32_t(hash >> 32))};
         }
+        case SamplerKind::PMJ02BN: {
+            // pbrt-v4: set dimension / 2 at the sample's own index while sets remain, then the sets
+            // again at a permuted index; a Cranley-Patterson rotation per pixel and dimension.
+            int index = sampleIndex, set = dimension / 2;
+            if (set >= kPMJ02BNSets)
+                index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(PixelDimensionHash()));
+            Vec2f u(0.5f, 0.5f);
+            if (pmjPoints)
+                u = pmjPoints[PMJPixelSampleCount() + size_t(set % kPMJ02BNSets) * size_t(samplesPerPixel) + size_t(index)];
+            u.x += PixelRotation(dimension);
+            u.y += PixelRotation(dimension + 1);
+            if (u.x >= 1) u.x -= 1;
+            if (u.y >= 1) u.y -= 1;
+            dimension += 2;
+            return {Min(u.x, OneMinusEpsilon), Min(u.y, OneMinusEpsilon)};
+        }
         default: {  // Stratified
             uint64_t hash = PixelDimensionHash();
             int stratum = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
@@ -381,10 +418,38 @@ struct Sampler {
             Float u1 = SobolSampleAny(globalIndex, 1, RandomizeStrategy::None, 0) * scale - Float(py);
             return {Clamp(u0, Float(0), OneMinusEpsilon), Clamp(u1, Float(0), OneMinusEpsilon)};
         }
+        if (kind == SamplerKind::PMJ02BN) {
+            // pbrt-v4: the pixel's share of the first set spread over the tile (no dimension is
+            // consumed). Passes past the first rotate it (toroidally within the pixel).
+            int tx = px % pmjTileSize, ty = py % pmjTileSize;
+            if (tx < 0) tx += pmjTileSize;
+            if (ty < 0) ty += pmjTileSize;
+            if (!pmjPoints) return {0.5f, 0.5f};
+            Vec2f u = pmjPoints[(size_t(tx) + size_t(ty) * size_t(pmjTileSize)) * size_t(samplesPerPixel) + size_t(sampleIndex)];
+            if (pass > 0) {
+                uint64_t h = MixBits(uint64_t(uint32_t(passSeed)) ^ 0x243f6a8885a308d3ull);
+                u.x += Float(h >> 40) * 0x1p-24f;
+                u.y += Float((h >> 16) & 0xffffff) * 0x1p-24f;
+                if (u.x >= 1) u.x -= 1;
+                if (u.y >= 1) u.y -= 1;
+            }
+            return {Min(u.x, OneMinusEpsilon), Min(u.y, OneMinusEpsilon)};
+        }
         return Get2D();
     }
 
     // ---- Internals ----
+
+    // PMJ02BN: the number of pixel samples in the table (before the sets).
+    LU_HD size_t PMJPixelSampleCount() const { return size_t(pmjTileSize) * size_t(pmjTileSize) * size_t(samplesPerPixel); }
+
+    // PMJ02BN: the offset in [0, 1) of dimension d in this pixel (pbrt-v4's BlueNoise(d, pixel),
+    // here white noise from a hash of the pixel, dimension and seed: Lucerna has no blue-noise table).
+    LU_HD Float PixelRotation(int d) const {
+        uint64_t h = MixBits((uint64_t(uint32_t(px)) << 48) ^ (uint64_t(uint32_t(py)) << 32) ^
+                             (uint64_t(uint32_t(d)) << 16) ^ uint64_t(int64_t(passSeed)) ^ 0xb7e151628aed2a6bull);
+        return Float(h >> 40) * 0x1p-24f;
+    }
 
     // pbrt-v4's HaltonSampler::SampleDimension (PermuteDigits seeded by `seed`; Owen by dimension).
     LU_HD Float HaltonDimension(int d) const {

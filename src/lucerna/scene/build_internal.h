@@ -95,6 +95,12 @@ struct BuildContext {
     BuildContext(const SceneDescription &d, Diagnostics &g, const BuildOptions &o, HostScene &s)
         : desc(d), diag(g), opts(o), scene(s) {}
 
+    // What the Option directives set (pbrt-v4's BasicPBRTOptions that the scene may change).
+    struct {
+        bool disablePixelJitter = false, disableWavelengthJitter = false;
+        int seed = 0;   // the default of every sampler's "seed" (pbrt-v4's Options->seed)
+    } sceneOptions;
+
     // Unsupported features met so far (each location and message once), in scene order.
     std::vector<SceneError> unsupportedErrors;
     // Runs f; an UnsupportedError it throws is recorded and false returned (the caller skips the

@@ -178,8 +178,7 @@ ImageTexParams ReadImageTexture(BuildContext &ctx, const TextureEntity &te, bool
     if (wrapString == "repeat") wrap = WrapMode::Repeat;
     else if (wrapString == "clamp") wrap = WrapMode::Clamp;
     else if (wrapString == "black") wrap = WrapMode::Black;
-    else if (wrapString == "octahedralsphere")
-        FailUnsupported(ParamLoc(p, "wrap", te.loc), "texture wrap mode \"octahedralsphere\"");
+    else if (wrapString == "octahedralsphere") wrap = WrapMode::OctahedralSphere;
     else
         Fail(ParamLoc(p, "wrap", te.loc), Quoted(wrapString) + ": unknown wrap mode");
     r.scale = Float(p.GetOneFloat("scale", 1));

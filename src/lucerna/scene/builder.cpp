@@ -4,12 +4,14 @@
 #include "lucerna/scene/builder.h"
 
 #include <array>
+#include <cctype>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 #include <cmath>
 
 #include "lucerna/scene/camera_build.h"
+#include "lucerna/scene/pmj02_build.h"
 #include "lucerna/scene/sampler_build.h"
 #include "lucerna/scene/build_internal.h"
 
@@ -43,6 +45,7 @@ SceneView HostScene::View() const {
     v.spectrumTextures = SpanOf(spectrumTextures);
     v.distributions2D = SpanOf(distributions2D);
     v.distData = SpanOf(distData);
+    v.pmjPoints = SpanOf(pmjPoints);
     v.media = SpanOf(media);
     v.mediumData = SpanOf(mediumData);
     v.walkInterfaces = walkInterfaces;
@@ -223,6 +226,7 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     fd.height = yres;
     fd.imagingRatio = exposureTime * iso / 100;
     fd.maxComponentValue = maxComponent > 0 ? maxComponent : Infinity;
+    fd.filterWeightFloor = FilterWeightFloor(s.filter, s.distributions2D);   // the filter is built first
     // pbrt-v4's RGBFilm: outputRGBFromSensorRGB = colorSpace->RGBFromXYZ * sensor->XYZFromSensorRGB,
     // colorSpace the one in effect at Film; the cie1931 sensor's XYZFromSensorRGB is the identity,
     // or with "whitebalance" the Bradford adaptation from D(T) to the output space's white.
@@ -300,14 +304,64 @@ void BuildCamera(BuildContext &ctx) {
     p.ReportUnused(ctx.diag, "Camera " + Quoted(name));
 }
 
+// pbrt-v4's Option directive (BasicSceneBuilder::Option): the name compared lower-cased without
+// '_' and '-', the value as the raw token. What changes Lucerna's picture is applied
+// (ctx.sceneOptions); what only changes pbrt-v4's run is accepted; what Lucerna cannot do is
+// reported by name.
+void ReadOptionDirectives(BuildContext &ctx) {
+    for (const SceneDescription::OptionEntry &o : ctx.desc.options) {
+        std::string name;
+        for (unsigned char c : o.name)
+            if (c != '_' && c != '-') name += char(std::tolower(c));
+        auto boolValue = [&] {
+            if (o.value != "true" && o.value != "false")
+                Fail(o.loc, "Option " + Quoted(o.name) + ": expected true or false (unquoted), got " + o.value);
+            return o.value == "true";
+        };
+        auto stringValue = [&] {
+            if (o.value.size() < 3 || o.value.front() != '"' || o.value.back() != '"')
+                Fail(o.loc, "Option " + Quoted(o.name) + ": expected a quoted string, got " + o.value);
+            return o.value.substr(1, o.value.size() - 2);
+        };
+        auto numberValue = [&](bool integer) {
+            char *end = nullptr;
+            double v = std::strtod(o.value.c_str(), &end);
+            if (o.value.empty() || *end != '\0' || !std::isfinite(v) || (integer && (v != std::floor(v) || std::abs(v) > 2147483647.0)))
+                Fail(o.loc, "Option " + Quoted(o.name) + ": expected " + (integer ? "an integer" : "a number") + ", got " + o.value);
+            return v;
+        };
+        if (name == "disablepixeljitter") ctx.sceneOptions.disablePixelJitter = boolValue();
+        else if (name == "disablewavelengthjitter") ctx.sceneOptions.disableWavelengthJitter = boolValue();
+        else if (name == "seed") ctx.sceneOptions.seed = int(numberValue(true));
+        else if (name == "disabletexturefiltering") boolValue();  // Lucerna always reads the finest level, as this makes pbrt-v4 do
+        else if (name == "wavefront") boolValue();                // pbrt-v4's choice of its own GPU/wavefront integrator
+        else if (name == "rendercoordsys") {
+            std::string sys = stringValue();
+            if (!OneOf(sys, {"camera", "cameraworld", "world"}))
+                Fail(o.loc, Quoted(sys) + ": unknown rendering coordinate system (camera, cameraworld or world)");
+        } else if (name == "forcediffuse") {
+            if (boolValue()) ctx.Collect([&] { FailUnsupported(o.loc, "Option \"forcediffuse\"", "materials are rendered as written"); });
+        } else if (name == "displacementedgescale") {
+            numberValue(false);
+            ctx.diag.Warning(o.loc, "Option \"displacementedgescale\" has no effect: Lucerna does not tessellate displacement");
+        } else if (name == "msereferenceimage" || name == "msereferenceout") {
+            stringValue();
+            ctx.diag.Unsupported(o.loc, "Option " + Quoted(o.name), "ignored (compare images with `lucerna diff`)");
+        } else if (name == "pixelstats") {
+            if (boolValue()) ctx.diag.Unsupported(o.loc, "Option \"pixelstats\"", "ignored (no per-pixel statistics images)");
+        } else {
+            Fail(o.loc, Quoted(o.name) + ": unknown option");
+        }
+    }
+}
+
 void BuildFilter(BuildContext &ctx) {
     const SceneEntity &f = ctx.desc.filter;
     HostScene &s = ctx.scene;
     const ParameterDictionary &p = f.params;
     std::string name = f.name.empty() ? "gaussian" : f.name;
-    if (name == "sinc") FailUnsupported(f.loc, "PixelFilter \"sinc\"");
-    if (!OneOf(name, {"box", "gaussian", "triangle", "mitchell"})) Fail(f.loc, "unknown filter type " + Quoted(name));
-    Float defRadius = name == "box" ? 0.5f : name == "gaussian" ? 1.5f : 2.f;
+    if (!OneOf(name, {"box", "gaussian", "triangle", "mitchell", "sinc"})) Fail(f.loc, "unknown filter type " + Quoted(name));
+    Float defRadius = name == "box" ? 0.5f : name == "gaussian" ? 1.5f : name == "sinc" ? 4.f : 2.f;
     Float xr = Float(p.GetOneFloat("xradius", defRadius)), yr = Float(p.GetOneFloat("yradius", defRadius));
     if (!(xr > 0)) Fail(ParamLoc(p, "xradius", f.loc), "filter radius must be positive");
     if (!(yr > 0)) Fail(ParamLoc(p, "yradius", f.loc), "filter radius must be positive");
@@ -320,8 +374,14 @@ void BuildFilter(BuildContext &ctx) {
         B = Float(p.GetOneFloat("B", 1.0 / 3));
         C = Float(p.GetOneFloat("C", 1.0 / 3));
     }
-    s.filter = MakeFilter(name, xr, yr, sigma, B, C);
+    Float tau = -1;
+    if (name == "sinc") {
+        tau = Float(p.GetOneFloat("tau", 3.0));
+        if (!(tau > 0)) Fail(ParamLoc(p, "tau", f.loc), "sinc \"tau\" must be positive");
+    }
+    s.filter = MakeFilter(name, xr, yr, sigma, B, C, tau);
     BuildFilterDistribution(s.filter, s.distributions2D, s.distData);
+    s.filter.disableJitter = ctx.sceneOptions.disablePixelJitter;
     s.stats.filterType = name;
     p.ReportUnused(ctx.diag, "PixelFilter " + Quoted(name));
 }
@@ -351,7 +411,7 @@ void BuildSampler(BuildContext &ctx) {
         if (spp > (1 << 24)) Fail(ParamLoc(p, "pixelsamples", e.loc), "\"pixelsamples\" must be at most 2^24");
     }
     rs.spp = spp;
-    rs.seed = uint32_t(p.GetOneInt("seed", 0));
+    rs.seed = uint32_t(p.GetOneInt("seed", ctx.sceneOptions.seed));
     if (OneOf(name, {"sobol", "zsobol", "paddedsobol", "halton"})) {
         FileLoc loc = ParamLoc(p, "randomization", e.loc);
         options.randomization = p.GetOneString("randomization", "");
@@ -363,10 +423,13 @@ void BuildSampler(BuildContext &ctx) {
     }
     if (name == "sobol" && Max(scene.film.width, scene.film.height) > 65536)
         Fail(e.loc, "sobol sampler: resolutions above 65536 pixels are not supported");
-    if (name == "pmj02bn")
-        ctx.diag.Unsupported(e.loc, "Sampler " + Quoted(name), "rendered with \"zsobol\" (same samples per pixel and seed)");
+    if (name == "pmj02bn" && spp > kPMJ02BNSamples)
+        Fail(ParamLoc(p, "pixelsamples", e.loc), "pmj02bn sampler: at most " + std::to_string(kPMJ02BNSamples) +
+                                                      " samples per pixel (pbrt-v4's limit)");
     std::string report;
     scene.sampler = MakeSampler(name, spp, int(rs.seed), scene.film.width, scene.film.height, options, &report);
+    if (scene.sampler.kind == SamplerKind::PMJ02BN)
+        scene.pmjPoints = BuildPMJ02BNTables(scene.sampler.samplesPerPixel, 0x706d6a3032626eull, &scene.sampler.pmjTileSize);
     for (size_t i = 0, j; i < report.size(); i = j + 1) {
         j = report.find('\n', i);
         if (j == std::string::npos) j = report.size();
@@ -434,11 +497,12 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
         throw all;
     };
     try {
-        for (const auto &[name, loc] : desc.options) diag.Unsupported(loc, "Option " + Quoted(name), "ignored");
+        ReadOptionDirectives(ctx);
 
         // Rendering options, in pbrt-v4's order (filter, film, camera, sampler, integrator).
         ctx.Collect([&] { BuildFilter(ctx); });
         BuildFilm(ctx, ExposureTime(ctx));
+        scene->film.disableWavelengthJitter = ctx.sceneOptions.disableWavelengthJitter;
         ctx.Collect([&] { BuildCamera(ctx); });
         BuildSampler(ctx);
         ctx.Collect([&] { BuildIntegrator(ctx); });

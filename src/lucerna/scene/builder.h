@@ -74,6 +74,7 @@ class HostScene {
     std::vector<SpectrumTexture> spectrumTextures;
     std::vector<Distribution2D> distributions2D;
     std::vector<Float> distData;
+    std::vector<Vec2f> pmjPoints;   // the pmj02bn sampler's tables (scene/pmj02_build.h)
     std::vector<Medium> media;
     std::vector<Float> mediumData;
     bool walkInterfaces = false;   // media or interface shapes: shadow rays walk through interfaces

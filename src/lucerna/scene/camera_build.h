@@ -28,15 +28,18 @@ CameraData MakeOrthographicCamera(const Transform &renderFromCamera, int width, 
 CameraData MakeSphericalCamera(const Transform &renderFromCamera, int width, int height, CameraKind kind);
 
 // pbrt-v4's filter by name with its defaults: gaussian (radius 1.5, sigma 0.5), box (0.5),
-// triangle (2), mitchell (2, B = C = 1/3). A radius or sigma <= 0 (or NaN) and a NaN B or C
-// mean "not given": the default is used. Throws std::invalid_argument for an unknown name
-// (pbrt-v4 also has "sinc", which Lucerna does not implement).
+// triangle (2), mitchell (2, B = C = 1/3), sinc (pbrt-v4's LanczosSincFilter: 4, tau 3). A
+// radius, sigma or tau <= 0 (or NaN) and a NaN B or C mean "not given": the default is used.
+// Throws std::invalid_argument for an unknown name.
 FilterData MakeFilter(const std::string &name, Float xradius = -1, Float yradius = -1, Float sigma = -1,
-                      Float B = NAN, Float C = NAN);
+                      Float B = NAN, Float C = NAN, Float tau = -1);
 
-// Tabulates |f| for gaussian and mitchell filters into a Distribution2D over [0,1]^2 (cells of
+// Tabulates |f| for gaussian, mitchell and sinc filters into a Distribution2D over [0,1]^2 (cells of
 // 1/32 pixel, as pbrt-v4), appends it to dists/distData and sets f.distribution. Box and
 // triangle need no table (f.distribution = NoIndex).
 void BuildFilterDistribution(FilterData &f, std::vector<Distribution2D> &dists, std::vector<Float> &distData);
+// FilmData::filterWeightFloor for filter f (its distribution built): half a sample's expected
+// weight for mitchell and sinc, 0 for the filters without negative lobes.
+Float FilterWeightFloor(const FilterData &f, const std::vector<Distribution2D> &dists);
 
 }  // namespace lu

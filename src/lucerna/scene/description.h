@@ -137,7 +137,12 @@ struct SceneDescription {
     // Rendering options (pre-WorldBegin); name == "" when absent (defaults apply).
     CameraEntity camera;
     SceneEntity film, sampler, integrator, filter, accelerator;
-    std::vector<std::pair<std::string, FileLoc>> options;  // Option directives, as written
+    // Option directives, as written: the name (dequoted) and the value token (raw, quotes kept).
+    struct OptionEntry {
+        std::string name, value;
+        FileLoc loc;
+    };
+    std::vector<OptionEntry> options;
 
     // World.
     std::vector<SceneEntity> materials;                // anonymous Material directives

@@ -201,7 +201,7 @@ void SceneDescriptionBuilder::TransformTimes(double /*start*/, double /*end*/, c
 
 void SceneDescriptionBuilder::Option(const std::string &name, const std::string &value, const FileLoc &loc) {
     Enter(Block::Any, "Option", loc);
-    desc_.options.emplace_back(name + " " + value, loc);
+    desc_.options.push_back({name, value, loc});
 }
 
 void SceneDescriptionBuilder::ColorSpace(const std::string &name, const FileLoc &loc) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "lucerna/sampling/rng.h"
 
@@ -123,6 +124,38 @@ std::vector<Vec2f> GeneratePMJ02(uint32_t count, uint64_t seed, int *restarts) {
     while (!TryGenerate(count, rng, &pts)) ++tries;
     if (restarts) *restarts = tries;
     return pts;
+}
+
+std::vector<Vec2f> BuildPMJ02BNTables(int spp, uint64_t seed, int *tileSize) {
+    if (spp < 1 || spp > kPMJ02BNSamples)
+        throw std::invalid_argument("pmj02bn: samples per pixel must be in [1, " + std::to_string(kPMJ02BNSamples) + "]");
+    // pbrt-v4: the tile holds the whole first set, RoundUpPow4(spp) points per pixel.
+    int log4Spp = 0;
+    while ((1 << (2 * log4Spp)) < spp) ++log4Spp;
+    int log4N = 0;
+    while ((1 << (2 * log4N)) < kPMJ02BNSamples) ++log4N;
+    int tile = 1 << (log4N - log4Spp);
+    *tileSize = tile;
+    std::vector<Vec2f> sets[kPMJ02BNSets];
+    uint32_t perSet = uint32_t(RoundUpPow2(uint64_t(spp)));
+    sets[0] = GeneratePMJ02(uint32_t(kPMJ02BNSamples), seed);
+    for (int k = 1; k < kPMJ02BNSets; ++k) sets[k] = GeneratePMJ02(perSet, seed + uint64_t(k));
+    std::vector<Vec2f> out(size_t(tile) * tile * spp + size_t(kPMJ02BNSets) * spp);
+    std::vector<int> stored(size_t(tile) * tile, 0);
+    for (const Vec2f &p : sets[0]) {
+        double x = double(p.x) * tile, y = double(p.y) * tile;
+        int ix = std::min(int(x), tile - 1), iy = std::min(int(y), tile - 1);
+        size_t pixel = size_t(ix) + size_t(iy) * tile;
+        if (stored[pixel] == spp) continue;   // spp not a power of 4: the first spp of the pixel's points
+        out[pixel * spp + size_t(stored[pixel]++)] =
+            Vec2f(std::min(float(x - ix), OneMinusEpsilon), std::min(float(y - iy), OneMinusEpsilon));
+    }
+    for (int s : stored)
+        if (s != spp) throw std::logic_error("pmj02bn: the first set is not stratified over the pixel tile");
+    size_t base = size_t(tile) * tile * spp;
+    for (int k = 0; k < kPMJ02BNSets; ++k)
+        for (int i = 0; i < spp; ++i) out[base + size_t(k) * spp + size_t(i)] = sets[k][size_t(i)];
+    return out;
 }
 
 bool IsZeroTwoNet(const std::vector<Vec2f> &points, int log2n) {

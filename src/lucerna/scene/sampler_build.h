@@ -17,8 +17,8 @@ struct SamplerOptions {
 };
 
 // Builds a sampler by pbrt-v4 name: "independent", "zsobol" (default), "paddedsobol",
-// "stratified", "halton", "sobol". "pmj02bn" and unknown names fall back to ZSobol with the
-// requested spp. As pbrt-v4 does, "zsobol" rounds a non-power-of-two spp down to a power of two.
+// "stratified", "halton", "sobol", "pmj02bn" (its tables: BuildPMJ02BNTables, bound by
+// RenderSampler). Unknown names fall back to ZSobol with the requested spp. As pbrt-v4 does, "zsobol" rounds a non-power-of-two spp down to a power of two.
 // Anything noteworthy (fallbacks, rounding) is appended to *report (one line each) when given,
 // else printed to stderr as a warning.
 inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width, int height,
@@ -41,11 +41,17 @@ inline Sampler MakeSampler(const std::string &name, int spp, int seed, int width
     else if (name == "stratified") s.kind = SamplerKind::Stratified;
     else if (name == "halton") s.kind = SamplerKind::Halton;
     else if (name == "sobol") s.kind = SamplerKind::Sobol;
+    else if (name == "pmj02bn") s.kind = SamplerKind::PMJ02BN;
     else {
         s.kind = SamplerKind::ZSobol;
         roundZSobol = false;
-        if (name != "pmj02bn")   // that one: the caller reports the substitution
-            note("unknown sampler \"" + name + "\"; using \"zsobol\" instead");
+        note("unknown sampler \"" + name + "\"; using \"zsobol\" instead");
+    }
+    if (s.kind == SamplerKind::PMJ02BN) {
+        int n = s.samplesPerPixel, p4 = 1;
+        while (p4 < n) p4 *= 4;
+        if (p4 != n)
+            note("pmj02bn: results are best with a power-of-4 sample count (1, 4, 16, 64, ...), got " + std::to_string(n));
     }
 
     const std::string &rnd = options.randomization;

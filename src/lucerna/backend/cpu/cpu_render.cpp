@@ -52,7 +52,7 @@ RenderStats RenderCPU(const HostScene &hs, const RenderSettings &settings, FilmA
     if (settings.threads > 0)
         threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                             size_t(settings.threads));
-    Sampler sampler = RenderSampler(hs.sampler, settings);
+    Sampler sampler = RenderSampler(hs.sampler, settings, scene);
     RenderStats stats;
     if (settings.cpuTracer == CpuTracer::BVH) {
         auto t0 = std::chrono::steady_clock::now();

@@ -116,7 +116,7 @@ RenderStats RenderCUDA(const DeviceScene &dev, const Sampler &sceneSampler, cons
 
     PathKernelArgs args;
     args.bvh = dev.Bvh();
-    args.sampler = RenderSampler(sceneSampler, settings);
+    args.sampler = RenderSampler(sceneSampler, settings, scene);
     args.width = width;
     args.height = height;
     PassPipeline pipe(width, height);

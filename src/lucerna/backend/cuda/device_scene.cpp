@@ -12,7 +12,7 @@ Span<T> DeviceScene::Upload(DeviceBuffer<T> &buf, Span<T> host) {
 
 DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     // Every span of SceneView must be uploaded below; this trips when SceneView changes.
-    static_assert(sizeof(SceneView) == 840, "SceneView changed: upload its new spans in DeviceScene");
+    static_assert(sizeof(SceneView) == 872, "SceneView changed: upload its new spans in DeviceScene");
     view_ = host;   // scalars (camera, film, filter, bounds, table sizes) copy as they are
     view_.positions = Upload(positions_, host.positions);
     view_.normals = Upload(normals_, host.normals);
@@ -35,6 +35,7 @@ DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     view_.spectrumTextures = Upload(spectrumTextures_, host.spectrumTextures);
     view_.distributions2D = Upload(distributions2D_, host.distributions2D);
     view_.distData = Upload(distData_, host.distData);
+    view_.pmjPoints = Upload(pmjPoints_, host.pmjPoints);
     view_.rgbToSpecCoeffs = Upload(rgbToSpecCoeffs_, host.rgbToSpecCoeffs);
     view_.rgbToSpecZNodes = Upload(rgbToSpecZNodes_, host.rgbToSpecZNodes);
     view_.media = Upload(media_, host.media);

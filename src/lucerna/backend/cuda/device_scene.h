@@ -41,6 +41,7 @@ class DeviceScene {
     DeviceBuffer<SpectrumTexture> spectrumTextures_;
     DeviceBuffer<Distribution2D> distributions2D_;
     DeviceBuffer<Float> distData_;
+    DeviceBuffer<Vec2f> pmjPoints_;
     DeviceBuffer<Float> spectra_;
     DeviceBuffer<Float> rgbToSpecCoeffs_, rgbToSpecZNodes_;
     DeviceBuffer<Medium> media_;
