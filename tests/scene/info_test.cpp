@@ -76,7 +76,8 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     // Every unsupported feature at once, each at its file:line, the included one with its chain;
     // `lucerna render` refuses the scene with the same list.
     std::ofstream(dir + "/lights.pbrt") << "# included\nLightSource \"infinite\" \"point3 portal\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ]\n";
-    std::ofstream(dir + "/many.pbrt") << "Camera \"realistic\"\nFilm \"rgb\" \"integer xresolution\" [ 8 ] "
+    std::ofstream(dir + "/lens.dat") << "0 4 1 14\n50 5 1.5 20\n-50 48 1 20\n";
+    std::ofstream(dir + "/many.pbrt") << "Camera \"realistic\" \"string aperture\" \"pentagon\" \"string lensfile\" \"lens.dat\"\nFilm \"rgb\" \"integer xresolution\" [ 8 ] "
                                          "\"integer yresolution\" [ 8 ]\nWorldBegin\nMaterial \"hair\"\n"
                                          "Shape \"sphere\"\nInclude \"lights.pbrt\"\nShape \"curve\" \"point3 P\" "
                                          "[ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n";
@@ -93,7 +94,7 @@ TEST(InfoCommand, ExitCodesAndOutput) {
         while ((n = fread(buf, 1, sizeof buf, p)) > 0) many.append(buf, n);
         int status = pclose(p);
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << many;
-        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:1:1: error: Camera \"realistic\" is not supported")) << many;
+        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:1:20: error: Camera \"realistic\" \"aperture\" \"pentagon\" is not supported")) << many;
         EXPECT_TRUE(Contains(many, dir + "/many.pbrt:4:1: error: Material type \"hair\" is not supported")) << many;
         EXPECT_TRUE(Contains(many, dir + "/many.pbrt:7:1: error: Shape \"curve\" is not supported")) << many;
         EXPECT_TRUE(Contains(many, "In file included from " + dir + "/many.pbrt:6:1:\n" + dir + "/lights.pbrt:2:")) << many;

@@ -6,6 +6,7 @@
 
 #include "lucerna/core/scene_data.h"
 #include "lucerna/camera/filter.h"
+#include "lucerna/camera/realistic.h"
 #include "lucerna/lights/equal_area.h"
 #include "lucerna/sampling/sampler.h"
 #include "lucerna/sampling/warp.h"
@@ -52,11 +53,23 @@ LU_INLINE Vec2f SphericalCameraImagePoint(CameraKind kind, Vec3f dCamera) {
 // from the raster point on the plane z = 0 along +z. Thin lens (both): the ray leaves a uniform
 // point of the lens disk (radius lensRadius, centred on the pinhole ray's origin) towards the
 // point where the pinhole ray meets the plane z = focalDistance. Spherical: from the origin in
-// the direction of the image point pFilm / resolution. ray->d is unit length, tMax = inf.
-// Returns false only for a degenerate direction.
-LU_INLINE bool GenerateRay(const CameraData &c, Vec2f pFilm, Vec2f uLens, Ray *ray) {
+// the direction of the image point pFilm / resolution. Realistic: pbrt-v4's lens system
+// (camera/realistic.h), from the front element. ray->d is unit length, tMax = inf.
+// *weight (optional) is the ray's camera weight, which multiplies its radiance: 1 for every camera
+// but the realistic one (pbrt-v4's cos^4 / pupil pdf). Returns false (weight 0) for a degenerate
+// direction or a vignetted realistic camera ray.
+LU_INLINE bool GenerateRay(const CameraData &c, Vec2f pFilm, Vec2f uLens, Ray *ray, Float *weight = nullptr) {
     Vec3f o(0, 0, 0), d;
-    if (c.kind == CameraKind::Perspective || c.kind == CameraKind::Orthographic) {
+    if (weight) *weight = 1;
+    if (c.kind == CameraKind::Realistic) {
+        Ray rCamera;
+        Float w;
+        bool ok = GenerateRealisticRay(c, pFilm, uLens, &rCamera, &w);
+        if (weight) *weight = w;
+        if (!ok) return false;
+        o = rCamera.o;
+        d = rCamera.d;
+    } else if (c.kind == CameraKind::Perspective || c.kind == CameraKind::Orthographic) {
         Vec3f pCamera = c.cameraFromRaster.ApplyPoint(Vec3f(pFilm.x, pFilm.y, 0));
         if (c.kind == CameraKind::Perspective) {
             d = Normalize(pCamera);
@@ -77,7 +90,10 @@ LU_INLINE bool GenerateRay(const CameraData &c, Vec2f pFilm, Vec2f uLens, Ray *r
     }
     Vec3f dRender = c.renderFromCamera.ApplyVector(d);
     Float len = Length(dRender);
-    if (!(len > 0) || !IsFinite(dRender)) return false;
+    if (!(len > 0) || !IsFinite(dRender)) {
+        if (weight) *weight = 0;
+        return false;
+    }
     ray->o = c.renderFromCamera.ApplyPoint(o);
     ray->d = dRender / len;
     ray->tMax = Infinity;

@@ -363,8 +363,30 @@ struct Medium {
 
 // ---- Camera and film ----
 
-// pbrt-v4's cameras (all but "realistic"); spherical with its two image mappings.
-enum class CameraKind : uint8_t { Perspective, Orthographic, SphericalEqualArea, SphericalEquirect };
+// pbrt-v4's cameras; spherical with its two image mappings.
+enum class CameraKind : uint8_t { Perspective, Orthographic, SphericalEqualArea, SphericalEquirect, Realistic };
+
+// One spherical interface of a realistic camera's lens system (pbrt-v4's LensElementInterface),
+// in meters; curvatureRadius 0 is the aperture stop. eta is the index of the medium behind the
+// interface (towards the film); 0 means air. thickness: distance to the next interface.
+struct LensElement {
+    Float curvatureRadius = 0, thickness = 0, eta = 0, apertureRadius = 0;
+};
+
+// An axis-aligned 2D box (the exit pupil's bound on the rear element's plane, meters).
+struct Bounds2f {
+    Vec2f pMin{Infinity, Infinity}, pMax{-Infinity, -Infinity};
+    LU_HD bool IsDegenerate() const { return !(pMax.x > pMin.x) || !(pMax.y > pMin.y); }
+    LU_HD Float Area() const { return (pMax.x - pMin.x) * (pMax.y - pMin.y); }
+    LU_HD bool Inside(Vec2f p) const { return p.x >= pMin.x && p.x <= pMax.x && p.y >= pMin.y && p.y <= pMax.y; }
+    LU_HD void Expand(Vec2f p) {
+        pMin = Vec2f(Min(pMin.x, p.x), Min(pMin.y, p.y));
+        pMax = Vec2f(Max(pMax.x, p.x), Max(pMax.y, p.y));
+    }
+    LU_HD Vec2f Lerp(Vec2f t) const {
+        return {(1 - t.x) * pMin.x + t.x * pMax.x, (1 - t.y) * pMin.y + t.y * pMax.y};
+    }
+};
 
 struct CameraData {
     CameraKind kind = CameraKind::Perspective;
@@ -373,6 +395,15 @@ struct CameraData {
     Float lensRadius = 0, focalDistance = 1e6f;
     int width = 0, height = 0;    // full film resolution (pixels)
     uint32_t medium = NoIndex;    // the medium camera rays start in (CameraBegin's outside medium)
+    // Realistic camera (pbrt-v4's RealisticCamera): the lens interfaces from the scene side to
+    // the film (the last one's thickness is the rear element-film distance), the exit pupil's
+    // bounds for equal radial intervals of film distance in [0, filmDiagonal / 2], and the
+    // film's physical extent (meters, centred on the axis). The spans point into the scene's
+    // arrays (HostScene::lensElements, exitPupilBounds; uploaded by the CUDA backend).
+    Span<LensElement> lensElements;
+    Span<Bounds2f> exitPupilBounds;
+    Float filmDiagonal = 0;
+    Vec2f physicalExtentMin, physicalExtentMax;
 };
 
 enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell, LanczosSinc };
@@ -397,6 +428,7 @@ struct FilmData {
     // half a sample's expected filter weight for filters with negative lobes (mitchell, sinc),
     // whose signed weight sums can fall near 0 at low sample counts; 0 for the others.
     Float filterWeightFloor = 0;
+    Float diagonalMm = 35;       // the sensor's diagonal (Film "diagonal", mm; the realistic camera's film size)
 };
 
 // ---- The whole scene, as spans over one upload per array ----

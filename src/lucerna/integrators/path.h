@@ -200,11 +200,13 @@ LU_HD CameraSampleResult RenderSample(int px, int py, uint32_t sampleIndex, Samp
     CameraSample cs = GetCameraSample(sampler, px, py, scene.filter, scene);
     r.filterWeight = cs.filterWeight;
     Ray ray;
-    if (!GenerateRay(scene.camera, cs.pFilm, cs.pLens, &ray)) {
-        r.L = SampledSpectrum(0);
+    Float cameraWeight;
+    if (!GenerateRay(scene.camera, cs.pFilm, cs.pLens, &ray, &cameraWeight)) {
+        r.L = SampledSpectrum(0);   // vignetted or degenerate: a zero sample that still counts
         return r;
     }
     r.L = Li(ray, r.lambda, sampler, scene, tracer, ps, st, &r.depth);
+    if (cameraWeight != 1) r.L *= cameraWeight;   // pbrt-v4: L = cameraRay->weight * Li (1 but for lens systems)
     return r;
 }
 

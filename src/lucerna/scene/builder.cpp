@@ -77,6 +77,8 @@ SceneView HostScene::View() const {
     for (const Light &l : lights) v.collimatedLights += l.kind == LightKind::Collimated;
     for (const Shape &sh : shapes) v.alphaShapes += sh.alpha != NoIndex;
     v.camera = camera;
+    v.camera.lensElements = SpanOf(lensElements);     // the realistic camera's arrays
+    v.camera.exitPupilBounds = SpanOf(exitPupilBounds);
     v.film = film;
     v.filter = filter;
     v.bounds = bounds;
@@ -206,7 +208,8 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     std::string sensor = p.GetOneString("sensor", "cie1931");
     Float maxComponent = Float(p.GetOneFloat("maxcomponentvalue", Infinity));
     (void)p.GetOneBool("savefp16", true);
-    (void)p.GetOneFloat("diagonal", 35);
+    Float diagonal = Float(p.GetOneFloat("diagonal", 35));
+    if (!(diagonal > 0)) Fail(ParamLoc(p, "diagonal", f.loc), "\"diagonal\" must be positive");
     if (p.Has("cropwindow")) {
         (void)p.GetFloatArray("cropwindow");
         ctx.diag.Unsupported(ParamLoc(p, "cropwindow", f.loc), "Film \"cropwindow\"", "the full image is rendered");
@@ -227,6 +230,7 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     fd.imagingRatio = exposureTime * iso / 100;
     fd.maxComponentValue = maxComponent > 0 ? maxComponent : Infinity;
     fd.filterWeightFloor = FilterWeightFloor(s.filter, s.distributions2D);   // the filter is built first
+    fd.diagonalMm = diagonal;
     // pbrt-v4's RGBFilm: outputRGBFromSensorRGB = colorSpace->RGBFromXYZ * sensor->XYZFromSensorRGB,
     // colorSpace the one in effect at Film; the cie1931 sensor's XYZFromSensorRGB is the identity,
     // or with "whitebalance" the Bradford adaptation from D(T) to the output space's white.
@@ -242,13 +246,54 @@ void BuildFilm(BuildContext &ctx, Float exposureTime) {
     p.ReportUnused(ctx.diag, "Film " + Quoted(name));
 }
 
+// pbrt-v4's RealisticCamera::Create: "lensfile" (resolved against the scene's directory),
+// "aperturediameter" (mm), "focusdistance" (m); only the default circular "aperture".
+void BuildRealisticCamera(BuildContext &ctx) {
+    const CameraEntity &c = ctx.desc.camera;
+    HostScene &s = ctx.scene;
+    const ParameterDictionary &p = c.params;
+    s.stats.cameraType = "realistic";
+    s.stats.cameraPosition = c.worldFromCamera.ApplyPoint(Vec3f(0, 0, 0));
+    Vec3f dir = c.worldFromCamera.ApplyVector(Vec3f(0, 0, 1));
+    if (LengthSquared(dir) > 0) s.stats.cameraDirection = Normalize(dir);
+    std::string aperture = p.GetOneString("aperture", "");
+    if (!aperture.empty() && aperture != "circular")
+        FailUnsupported(ParamLoc(p, "aperture", c.loc), "Camera \"realistic\" \"aperture\" " + Quoted(aperture),
+                        "only the default circular aperture stop is implemented; the pentagon, star, gaussian and "
+                        "image apertures are not");
+    std::string lensFile = p.GetOneString("lensfile", "");
+    Float apertureDiameter = Float(p.GetOneFloat("aperturediameter", 1.0));
+    Float focusDistance = Float(p.GetOneFloat("focusdistance", 10.0));
+    if (lensFile.empty()) Fail(c.loc, "realistic camera: no lens description file (\"string lensfile\") given");
+    FileLoc lensLoc = ParamLoc(p, "lensfile", c.loc);
+    if (!(apertureDiameter > 0)) Fail(ParamLoc(p, "aperturediameter", c.loc), "\"aperturediameter\" must be positive");
+    if (!(focusDistance > 0)) Fail(ParamLoc(p, "focusdistance", c.loc), "\"focusdistance\" must be positive");
+    std::string path = ResolvePath(ctx.desc.baseDirectory, lensFile);
+    s.inputFiles.push_back(path);
+    std::vector<LensTableRow> table = ReadLensTable(path, lensLoc);
+    bool haveStop = false;
+    for (const LensTableRow &r : table) haveStop |= r.curvatureRadius == 0;
+    if (!haveStop) ctx.diag.Warning(lensLoc, "realistic camera: the lens table has no aperture stop (a row of radius 0); \"aperturediameter\" is ignored");
+    std::string error, warning;
+    if (!MakeRealisticCamera(c.worldFromCamera, s.film.width, s.film.height, s.film.diagonalMm, table, apertureDiameter,
+                             focusDistance, &s.camera, &s.lensElements, &s.exitPupilBounds, &error, &warning))
+        Fail(ParamLoc(p, "focusdistance", lensLoc), "realistic camera: " + error);
+    if (!warning.empty()) ctx.diag.Warning(ParamLoc(p, "aperturediameter", c.loc), "realistic camera: " + warning);
+    bool anyPupil = false;
+    for (const Bounds2f &b : s.exitPupilBounds) anyPupil |= !b.IsDegenerate();
+    if (!anyPupil) ctx.diag.Warning(lensLoc, "realistic camera: no ray from the film gets through the lens system (a black image)");
+    p.ReportUnused(ctx.diag, "Camera \"realistic\"");
+}
+
 void BuildCamera(BuildContext &ctx) {
     const CameraEntity &c = ctx.desc.camera;
     HostScene &s = ctx.scene;
     const ParameterDictionary &p = c.params;
     std::string name = c.name.empty() ? "perspective" : c.name;
-    if (name == "realistic")
-        FailUnsupported(c.loc, "Camera \"realistic\"", "lens systems need a per-ray camera weight that the integrators do not take yet");
+    if (name == "realistic") {
+        BuildRealisticCamera(ctx);
+        return;
+    }
     if (!OneOf(name, {"perspective", "orthographic", "spherical"})) Fail(c.loc, "unknown camera type " + Quoted(name));
     Float lensRadius = Float(p.GetOneFloat("lensradius", 0));
     Float focalDistance = Float(p.GetOneFloat("focaldistance", 1e6));

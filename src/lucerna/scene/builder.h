@@ -80,6 +80,8 @@ class HostScene {
     bool walkInterfaces = false;   // media or interface shapes: shadow rays walk through interfaces
     std::vector<FileLoc> collimatedLightLocs;   // where each LightSource "collimated" is (the path warning)
     CameraData camera;
+    std::vector<LensElement> lensElements;    // realistic camera (CameraData::lensElements)
+    std::vector<Bounds2f> exitPupilBounds;    // realistic camera (CameraData::exitPupilBounds)
     FilmData film;
     FilterData filter;
 

@@ -7,6 +7,7 @@
 
 #include "lucerna/camera/camera.h"
 #include "lucerna/camera/filter.h"
+#include "lucerna/scene/error.h"
 
 namespace lu {
 
@@ -26,6 +27,40 @@ CameraData MakeOrthographicCamera(const Transform &renderFromCamera, int width, 
 // pbrt-v4's spherical camera: equal-area (kind SphericalEqualArea) or equirectangular mapping of
 // the whole image to the sphere of directions.
 CameraData MakeSphericalCamera(const Transform &renderFromCamera, int width, int height, CameraKind kind);
+
+// One row of a realistic camera's lens table as the file gives it (millimeters) and where it is.
+struct LensTableRow {
+    double curvatureRadius = 0, thickness = 0, eta = 0, apertureDiameter = 0;
+};
+
+// Reads a pbrt-v4 lens table: rows of four numbers (curvature radius, thickness, index of
+// refraction, aperture diameter; mm; radius 0 is the aperture stop), '#' to the end of a line a
+// comment. Throws SceneError at path:line:col for a non-number or a row without four values, at
+// `at` for a file that cannot be read or holds no row.
+std::vector<LensTableRow> ReadLensTable(const std::string &path, const FileLoc &at);
+
+// pbrt-v4's RealisticCamera constructor: the elements scaled to meters, the stop's diameter
+// replaced by apertureDiameterMm (kept, with *apertureWarning set, when that is larger than the
+// stop), the rear element-film distance from FocusThickLens(focusDistance) (meters), and the exit
+// pupil bounds (pupilIntervals radial film intervals, pupilSamples rays each; pbrt-v4 uses 64
+// and 2^20, 2^18 here: the bound is grown by the grid spacing either way). filmDiagonalMm: the Film's "diagonal". elements and pupilBounds receive the arrays the
+// returned CameraData's spans must be pointed at (HostScene::View does it). Returns false with
+// *error set when the lens cannot be focused there.
+bool MakeRealisticCamera(const Transform &renderFromCamera, int width, int height, Float filmDiagonalMm,
+                         const std::vector<LensTableRow> &table, Float apertureDiameterMm, Float focusDistance,
+                         CameraData *camera, std::vector<LensElement> *elements, std::vector<Bounds2f> *pupilBounds,
+                         std::string *error, std::string *apertureWarning = nullptr, int pupilIntervals = 64,
+                         int pupilSamples = 1 << 18);
+
+// pbrt-v4's BoundExitPupil: the bound on the rear element's plane of the points through which a
+// ray from film points (x, 0, 0), x in [filmX0, filmX1], gets through the lens system (nSamples
+// rays on a radical-inverse grid over 1.5x the rear element, expanded by the grid spacing).
+Bounds2f BoundExitPupil(Span<LensElement> elements, Float filmX0, Float filmX1, int nSamples);
+
+// pbrt-v4's thick-lens approximation: the principal plane pz[i] and focal point fz[i] (camera
+// space z, meters) of rays entering from the scene (i = 0) and from the film (i = 1), traced
+// parallel to the axis at height 0.001 * filmDiagonal (meters). False when a ray is blocked.
+bool ComputeThickLensApproximation(Span<LensElement> elements, Float filmDiagonal, Float pz[2], Float fz[2]);
 
 // pbrt-v4's filter by name with its defaults: gaussian (radius 1.5, sigma 0.5), box (0.5),
 // triangle (2), mitchell (2, B = C = 1/3), sinc (pbrt-v4's LanczosSincFilter: 4, tau 3). A

@@ -39,6 +39,10 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     if (s.camera.kind == CameraKind::Perspective) o << ", fov " << Fmt("%.6g", st.fov) << " deg";
     else if (s.camera.kind == CameraKind::SphericalEqualArea) o << ", equal-area mapping";
     else if (s.camera.kind == CameraKind::SphericalEquirect) o << ", equirectangular mapping";
+    else if (s.camera.kind == CameraKind::Realistic && !s.lensElements.empty())
+        o << ", " << s.lensElements.size() << " lens interfaces, film "
+          << Fmt("%.4g", 1000 * s.lensElements.back().thickness) << " mm behind the rear element, "
+          << Fmt("%.4g", 1000 * s.camera.filmDiagonal) << " mm diagonal";
     o << ", position " << Vec(st.cameraPosition)
       << ", direction " << Vec(st.cameraDirection) << "\n";
     o << "film: imaging ratio " << Fmt("%.6g", s.film.imagingRatio) << ", filter " << st.filterType

@@ -46,6 +46,8 @@ class DeviceScene {
     DeviceBuffer<Float> rgbToSpecCoeffs_, rgbToSpecZNodes_;
     DeviceBuffer<Medium> media_;
     DeviceBuffer<Float> mediumData_;
+    DeviceBuffer<LensElement> lensElements_;
+    DeviceBuffer<Bounds2f> exitPupilBounds_;
     DeviceBuffer<BVHNode> nodes_;
     DeviceBuffer<PrimRef> prims_;
     DeviceBuffer<int32_t> prototypeRoots_;
