@@ -48,6 +48,23 @@ SceneError ErrorOf(const std::string &text) {
 
 bool Contains(const std::string &s, const std::string &what) { return s.find(what) != std::string::npos; }
 
+// Scene text that must fail at `line` with a message containing `what`.
+struct LocatedErrorCase {
+    std::string text;
+    int line;
+    const char *what;
+};
+// Each case's text between prefix and suffix fails where and as it says.
+void ExpectLocatedErrors(const std::string &prefix, std::initializer_list<LocatedErrorCase> cases,
+                         const std::string &suffix = "") {
+    for (const LocatedErrorCase &c : cases) {
+        SceneError e = ErrorOf(prefix + c.text + suffix);
+        EXPECT_TRUE(Contains(e.Message(), c.what)) << c.text << " -> " << e.Message();
+        EXPECT_EQ(e.Loc().line, c.line) << e.Message();
+    }
+}
+
+
 // ---- The shared scenes ----
 
 struct SharedScene {
@@ -798,11 +815,7 @@ TEST(Errors, BadFov) {
 }
 // Malformed media: errors at the offending line, naming what is wrong.
 TEST(Errors, Media) {
-    struct Case {
-        std::string world;
-        int line;
-        const char *what;
-    } cases[] = {
+    ExpectLocatedErrors(kHeader, {
         {"MakeNamedMedium \"fog\" \"string type\" \"smoke\"\n", 4, "unknown medium type \"smoke\""},
         {"MakeNamedMedium \"fog\" \"float scale\" 2\n", 4, "no \"string type\""},
         {"MakeNamedMedium \"fog\" \"string type\" \"uniformgrid\" \"integer nx\" 2\n  \"float density\" [ 1 -0.5 ]\n", 5,
@@ -819,12 +832,7 @@ TEST(Errors, Media) {
         {"MakeNamedMedium \"fog\" \"string type\" \"cloud\"\n  \"point3 p0\" [ 0 2 0 ]\n", 4, "p0 < p1"},
         {"MakeNamedMedium \"fog\" \"string type\" \"nanovdb\"\n  \"string filename\" \"missing.nvdb\"\n", 5, "cannot read NanoVDB file"},
         {"MediumInterface \"mist\" \"\"\nShape \"sphere\"\n", 5, "medium \"mist\" is not defined"},
-    };
-    for (const Case &c : cases) {
-        SceneError e = ErrorOf(std::string(kHeader) + c.world);
-        EXPECT_TRUE(Contains(e.Message(), c.what)) << e.Message();
-        EXPECT_EQ(e.Loc().line, c.line) << e.Message();
-    }
+    });
     // A NaN in a grid is refused where it is written.
     SceneError e = ErrorOf(std::string(kHeader) + "MakeNamedMedium \"fog\" \"string type\" \"uniformgrid\" \"integer nx\" 2\n"
                                                   "  \"float density\" [ 1 nan ]\n");
@@ -899,12 +907,7 @@ TEST(OptionDirective, DisabledPixelJitterSamplesThePixelCenter) {
 }
 
 TEST(OptionDirective, BadOptionsAreLocated) {
-    struct Case {
-        const char *text;
-        int line;
-        const char *what;
-    };
-    const Case cases[] = {
+    ExpectLocatedErrors("", {
         {"# comment\nOption \"fastmode\" true\n", 2, "unknown option"},
         {"Option \"disablepixeljitter\" yes\n", 1, "true or false"},
         {"Option \"disablepixeljitter\" \"true\"\n", 1, "true or false"},
@@ -912,12 +915,7 @@ TEST(OptionDirective, BadOptionsAreLocated) {
         {"Option \"rendercoordsys\" \"screen\"\n", 1, "coordinate system"},
         {"Option \"rendercoordsys\" world\n", 1, "quoted string"},
         {"Option \"forcediffuse\" true\n", 1, "forcediffuse"},
-    };
-    for (const Case &c : cases) {
-        SceneError e = ErrorOf(std::string(c.text) + kHeader);
-        EXPECT_TRUE(Contains(e.Message(), c.what)) << c.text << " -> " << e.Message();
-        EXPECT_EQ(e.Loc().line, c.line) << e.Message();
-    }
+    }, kHeader);
 }
 
 // ---- Shape alpha (pbrt-v4's getAlphaTexture) ----
