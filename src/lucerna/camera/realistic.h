@@ -41,44 +41,56 @@ LU_INLINE bool IntersectSphericalElement(Float radius, Float zCenter, const Ray 
     return true;
 }
 
+// Camera space <-> lens space (z negated; the same map both ways).
+LU_INLINE Ray FlipZ(const Ray &r) {
+    Ray f;
+    f.o = Vec3f(r.o.x, r.o.y, -r.o.z);
+    f.d = Vec3f(r.d.x, r.d.y, -r.d.z);
+    f.tMax = Infinity;
+    return f;
+}
+
+// Carries the lens-space ray *r across interface e, whose vertex is at z = elementZ, moving
+// towards the film (+z) or the scene (-z): it must meet the interface inside its aperture, and
+// it refracts there from index etaI into etaT (the stop only clips). False when it is blocked,
+// goes the wrong way at the stop, or is totally internally reflected.
+LU_INLINE bool CrossLensInterface(const LensElement &e, Float elementZ, bool towardFilm, Float etaI, Float etaT, Ray *r) {
+    bool isStop = e.curvatureRadius == 0;
+    Float t;
+    Vec3f n;
+    if (isStop) {
+        if (towardFilm ? r->d.z <= 0 : r->d.z >= 0) return false;
+        t = (elementZ - r->o.z) / r->d.z;
+    } else if (!IntersectSphericalElement(e.curvatureRadius, elementZ + e.curvatureRadius, *r, &t, &n)) {
+        return false;
+    }
+    Vec3f pHit = (*r)(t);
+    if (Sqr(pHit.x) + Sqr(pHit.y) > Sqr(e.apertureRadius)) return false;
+    r->o = pHit;
+    if (!isStop) {
+        Vec3f w;
+        if (!Refract(Normalize(-r->d), n, etaT / etaI, nullptr, &w)) return false;
+        r->d = w;
+    }
+    return true;
+}
+
+// The index of the medium on the film side of interface i (0 in a table means air).
+LU_INLINE Float LensEtaBehind(Span<LensElement> e, int i) { return e[uint32_t(i)].eta != 0 ? e[uint32_t(i)].eta : Float(1); }
+
 // Traces a camera-space ray leaving the film (z = 0, towards +z) through the lens system from the
 // rear element to the front one. Returns the ray's weight (1, or 0 when an element's rim or the
 // aperture stop blocks it or it is totally internally reflected); *rOut (camera space, optional)
 // is the ray leaving the front element.
 LU_INLINE Float TraceLensesFromFilm(Span<LensElement> elements, const Ray &rCamera, Ray *rOut) {
     Float elementZ = 0;
-    Ray r;
-    r.o = Vec3f(rCamera.o.x, rCamera.o.y, -rCamera.o.z);
-    r.d = Vec3f(rCamera.d.x, rCamera.d.y, -rCamera.d.z);
+    Ray r = FlipZ(rCamera);
     for (int i = int(elements.size) - 1; i >= 0; --i) {
-        const LensElement &e = elements[uint32_t(i)];
-        elementZ -= e.thickness;
-        bool isStop = e.curvatureRadius == 0;
-        Float t;
-        Vec3f n;
-        if (isStop) {
-            if (r.d.z >= 0) return 0;   // refracted back towards the film
-            t = (elementZ - r.o.z) / r.d.z;
-        } else if (!IntersectSphericalElement(e.curvatureRadius, elementZ + e.curvatureRadius, r, &t, &n)) {
-            return 0;
-        }
-        Vec3f pHit = r(t);
-        if (Sqr(pHit.x) + Sqr(pHit.y) > Sqr(e.apertureRadius)) return 0;
-        r.o = pHit;
-        if (!isStop) {
-            Float etaI = e.eta;
-            Float etaT = (i > 0 && elements[uint32_t(i - 1)].eta != 0) ? elements[uint32_t(i - 1)].eta : 1;
-            if (etaI == 0) etaI = 1;
-            Vec3f w;
-            if (!Refract(Normalize(-r.d), n, etaT / etaI, nullptr, &w)) return 0;
-            r.d = w;
-        }
+        elementZ -= elements[uint32_t(i)].thickness;
+        Float etaT = i > 0 ? LensEtaBehind(elements, i - 1) : Float(1);
+        if (!CrossLensInterface(elements[uint32_t(i)], elementZ, false, LensEtaBehind(elements, i), etaT, &r)) return 0;
     }
-    if (rOut) {
-        rOut->o = Vec3f(r.o.x, r.o.y, -r.o.z);
-        rOut->d = Vec3f(r.d.x, r.d.y, -r.d.z);
-        rOut->tMax = Infinity;
-    }
+    if (rOut) *rOut = FlipZ(r);
     return 1;
 }
 
@@ -86,37 +98,13 @@ LU_INLINE Float TraceLensesFromFilm(Span<LensElement> elements, const Ray &rCame
 // element to the rear one; false when blocked. *rOut (camera space, optional) leaves the rear element.
 LU_INLINE bool TraceLensesFromScene(Span<LensElement> elements, const Ray &rCamera, Ray *rOut) {
     Float elementZ = -LensFrontZ(elements);
-    Ray r;
-    r.o = Vec3f(rCamera.o.x, rCamera.o.y, -rCamera.o.z);
-    r.d = Vec3f(rCamera.d.x, rCamera.d.y, -rCamera.d.z);
-    for (uint32_t i = 0; i < elements.size; ++i) {
-        const LensElement &e = elements[i];
-        bool isStop = e.curvatureRadius == 0;
-        Float t;
-        Vec3f n;
-        if (isStop) {
-            if (r.d.z <= 0) return false;
-            t = (elementZ - r.o.z) / r.d.z;
-        } else if (!IntersectSphericalElement(e.curvatureRadius, elementZ + e.curvatureRadius, r, &t, &n)) {
-            return false;
-        }
-        Vec3f pHit = r(t);
-        if (Sqr(pHit.x) + Sqr(pHit.y) > Sqr(e.apertureRadius)) return false;
-        r.o = pHit;
-        if (!isStop) {
-            Float etaI = (i == 0 || elements[i - 1].eta == 0) ? 1 : elements[i - 1].eta;
-            Float etaT = e.eta != 0 ? e.eta : 1;
-            Vec3f w;
-            if (!Refract(Normalize(-r.d), n, etaT / etaI, nullptr, &w)) return false;
-            r.d = w;
-        }
-        elementZ += e.thickness;
+    Ray r = FlipZ(rCamera);
+    for (int i = 0; i < int(elements.size); ++i) {
+        Float etaI = i > 0 ? LensEtaBehind(elements, i - 1) : Float(1);
+        if (!CrossLensInterface(elements[uint32_t(i)], elementZ, true, etaI, LensEtaBehind(elements, i), &r)) return false;
+        elementZ += elements[uint32_t(i)].thickness;
     }
-    if (rOut) {
-        rOut->o = Vec3f(r.o.x, r.o.y, -r.o.z);
-        rOut->d = Vec3f(r.d.x, r.d.y, -r.d.z);
-        rOut->tMax = Infinity;
-    }
+    if (rOut) *rOut = FlipZ(r);
     return true;
 }
 

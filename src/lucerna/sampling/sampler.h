@@ -387,12 +387,9 @@ struct Sampler {
             Vec2f u(0.5f, 0.5f);
             if (pmjPoints)
                 u = pmjPoints[PMJPixelSampleCount() + size_t(set % kPMJ02BNSets) * size_t(samplesPerPixel) + size_t(index)];
-            u.x += PixelRotation(dimension);
-            u.y += PixelRotation(dimension + 1);
-            if (u.x >= 1) u.x -= 1;
-            if (u.y >= 1) u.y -= 1;
+            u = RotateToroidal(u, PixelRotation(dimension), PixelRotation(dimension + 1));
             dimension += 2;
-            return {Min(u.x, OneMinusEpsilon), Min(u.y, OneMinusEpsilon)};
+            return u;
         }
         default: {  // Stratified
             uint64_t hash = PixelDimensionHash();
@@ -428,10 +425,7 @@ struct Sampler {
             Vec2f u = pmjPoints[(size_t(tx) + size_t(ty) * size_t(pmjTileSize)) * size_t(samplesPerPixel) + size_t(sampleIndex)];
             if (pass > 0) {
                 uint64_t h = MixBits(uint64_t(uint32_t(passSeed)) ^ 0x243f6a8885a308d3ull);
-                u.x += Float(h >> 40) * 0x1p-24f;
-                u.y += Float((h >> 16) & 0xffffff) * 0x1p-24f;
-                if (u.x >= 1) u.x -= 1;
-                if (u.y >= 1) u.y -= 1;
+                return RotateToroidal(u, Float(h >> 40) * 0x1p-24f, Float((h >> 16) & 0xffffff) * 0x1p-24f);
             }
             return {Min(u.x, OneMinusEpsilon), Min(u.y, OneMinusEpsilon)};
         }
@@ -439,6 +433,15 @@ struct Sampler {
     }
 
     // ---- Internals ----
+
+    // A point of [0,1)^2 shifted by (dx, dy) in [0,1), wrapped around the unit square.
+    LU_HD static Vec2f RotateToroidal(Vec2f u, Float dx, Float dy) {
+        u.x += dx;
+        u.y += dy;
+        if (u.x >= 1) u.x -= 1;
+        if (u.y >= 1) u.y -= 1;
+        return {Min(u.x, OneMinusEpsilon), Min(u.y, OneMinusEpsilon)};
+    }
 
     // PMJ02BN: the number of pixel samples in the table (before the sets).
     LU_HD size_t PMJPixelSampleCount() const { return size_t(pmjTileSize) * size_t(pmjTileSize) * size_t(samplesPerPixel); }
