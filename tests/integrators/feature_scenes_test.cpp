@@ -20,7 +20,7 @@ std::vector<std::string> FeatureScenes() { return FeatureSceneFiles({"samplers-"
 
 TEST(FeatureScenes, SamplersAndCamerasBuildCleanAndRender) {
     std::vector<std::string> files = FeatureScenes();
-    ASSERT_EQ(files.size(), 8u);
+    ASSERT_EQ(files.size(), 9u);
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 32, 32);   // the equal-area scene is square; forcing 32x32 keeps it so

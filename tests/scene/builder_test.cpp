@@ -782,7 +782,7 @@ void ExpectError(const std::string &world, int line, const std::string &needle) 
 TEST(Errors, UnknownMaterial) { ExpectError("Shape \"sphere\"\nMaterial \"plastic\"\nShape \"sphere\"\n", 5, "\"plastic\""); }
 TEST(Errors, UnsupportedMaterial) { ExpectError("Material \"mix\" \"string materials\" [\"a\" \"b\"]\n", 4, "\"mix\""); }
 TEST(Errors, UnknownShape) { ExpectError("Shape \"sphere\"\nShape \"teapot\"\n", 5, "\"teapot\""); }
-TEST(Errors, UnsupportedShape) { ExpectError("Shape \"curve\"\n", 4, "\"curve\""); }
+TEST(Errors, CurveWithoutControlPoints) { ExpectError("Shape \"curve\"\n", 4, "0 control points"); }
 TEST(Errors, CylinderRadius) {
     ExpectError("Shape \"sphere\"\nShape \"cylinder\"\n  \"float radius\" -1\n", 6, "cylinder radius must be positive");
 }

@@ -256,6 +256,8 @@ Bounds3f PrimitiveBounds(const SceneView &scene, uint32_t shapeId, uint32_t prim
         Float r = c.radius;
         return PadBounds(TransformedBox(c.renderFromObject, Vec3f(-r, -r, c.zMin), Vec3f(r, r, c.zMax)));
     }
+    case ShapeKind::BilinearPatches:
+    case ShapeKind::Curves: return PadBounds(PatchOrCurveBounds(scene, shape, primitive));
     }
     return b;
 }
@@ -301,14 +303,18 @@ void AddShapeRefs(const SceneView &scene, uint32_t first, uint32_t end, std::vec
                 boxes->push_back(b);
             }
         } else {
-            PrimRef r;
-            r.shape = s;
-            r.primitive = 0;
-            r.kind = uint32_t(shape.kind);
-            Bounds3f b = PrimitiveBounds(scene, s, 0);
-            if (!IsFinite(b.pMin) || !IsFinite(b.pMax)) continue;
-            refs->push_back(r);
-            boxes->push_back(b);
+            // Quadrics (one primitive), patches and curve pieces.
+            uint32_t count = IsQuadric(shape.kind) ? 1 : shape.primitiveCount;
+            for (uint32_t prim = 0; prim < count; ++prim) {
+                PrimRef r;
+                r.shape = s;
+                r.primitive = prim;
+                r.kind = uint32_t(shape.kind);
+                Bounds3f b = PrimitiveBounds(scene, s, prim);
+                if (!IsFinite(b.pMin) || !IsFinite(b.pMax)) continue;
+                refs->push_back(r);
+                boxes->push_back(b);
+            }
         }
     }
 }

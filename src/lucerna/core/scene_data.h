@@ -150,7 +150,7 @@ struct Material {
 
 // ---- Shapes ----
 
-enum class ShapeKind : uint8_t { Triangles, Sphere, Disk, Cylinder };
+enum class ShapeKind : uint8_t { Triangles, Sphere, Disk, Cylinder, BilinearPatches, Curves };
 
 // A triangle mesh with world-space vertices. Triangle t of the mesh uses
 // indices[firstIndex + 3t .. +2], relative to firstVertex.
@@ -193,6 +193,42 @@ struct Cylinder {
     bool flipNormals = false;
 };
 
+// pbrt-v4's bilinear patch mesh, in render space like a TriangleMesh: patch i has the vertices
+// indices[firstIndex + 4i .. +3] (relative to firstVertex) in pbrt-v4's order p00, p10, p01, p11,
+// the surface p(u, v) = (1-u)(1-v) p00 + u(1-v) p10 + (1-u)v p01 + uv p11. Only patches that are
+// not parallelograms (with affine uv and normals) are kept as patches: the others are exactly two
+// triangles and go to a TriangleMesh (scene/build_shapes.cpp).
+struct BilinearMesh {
+    uint32_t firstVertex = 0, vertexCount = 0;
+    uint32_t firstIndex = 0, patchCount = 0;
+    uint32_t normalOffset = NoIndex;  // per-vertex shading normals at normals[normalOffset + i]
+    uint32_t uvOffset = NoIndex;      // per-vertex uv at uvs[uvOffset + i]
+    bool flipNormals = false;         // ReverseOrientation XOR transform swaps handedness
+};
+
+// pbrt-v4's curve types: a ribbon facing the ray ("flat"), the same shaded as a tube
+// ("cylinder"), a ribbon oriented by normals at its ends ("ribbon").
+enum class CurveType : uint8_t { Flat, Cylinder, Ribbon };
+
+// One cubic Bezier segment of a "curve" shape in its object space, with pbrt-v4's CurveCommon
+// data: widths at u = 0 and 1, and for ribbons the unit normals at the ends.
+struct CurveSegment {
+    Vec3f cp[4];
+    Float width[2];
+    Vec3f n[2];
+};
+
+// A "curve" shape: segments curveSegments[firstSegment ..] intersected in object space (pbrt-v4's
+// Curve). Each segment is split into 2^splitDepth pieces over u (pbrt-v4's "splitdepth"), the
+// primitives of the shape: primitive p is piece p & (2^splitDepth - 1) of segment p >> splitDepth.
+struct CurveSet {
+    Transform renderFromObject;
+    uint32_t firstSegment = 0, segmentCount = 0;
+    CurveType type = CurveType::Flat;
+    uint8_t splitDepth = 3;
+    bool flipNormals = false;   // ReverseOrientation XOR the transform swaps handedness
+};
+
 // pbrt-v4's Radians(Clamp(phimax, 0, 360)), exactly 2 pi at 360 (so that a full shape is not a
 // partial one by a rounding).
 LU_INLINE Float PhiMaxRadians(Float degrees) { return degrees >= 360 ? 2 * Pi : Radians(Clamp(degrees, Float(0), Float(360))); }
@@ -214,10 +250,10 @@ LU_INLINE bool IsPartial(const Sphere &sp) { return sp.zMin > -sp.radius || sp.z
 // One entry per shape in the scene; its index is the geometry id used by every backend.
 struct Shape {
     ShapeKind kind = ShapeKind::Triangles;
-    uint32_t index = 0;            // into triangleMeshes, spheres, disks or cylinders
+    uint32_t index = 0;            // into triangleMeshes, spheres, disks, cylinders, bilinearMeshes or curveSets
     uint32_t material = NoIndex;   // NoIndex: interface (no surface, rays pass through)
     uint32_t areaLight = NoIndex;  // first light index; primitive i of the shape has light areaLight + i
-    uint32_t primitiveCount = 1;   // triangles of a mesh, 1 for analytic shapes
+    uint32_t primitiveCount = 1;   // triangles of a mesh, patches, curve pieces; 1 for quadrics
     // pbrt-v4's MediumInterface: a ray leaving the surface along w enters outsideMedium when
     // Dot(w, n) > 0 (n: the oriented geometric normal), else insideMedium (NoIndex: vacuum).
     // Without a transition (no MediumInterface, or inside == outside) a ray keeps its medium.
@@ -441,6 +477,9 @@ struct SceneView {
     Span<Sphere> spheres;
     Span<Disk> disks;
     Span<Cylinder> cylinders;
+    Span<BilinearMesh> bilinearMeshes;   // their vertices are in positions / normals / uvs / indices
+    Span<CurveSet> curveSets;
+    Span<CurveSegment> curveSegments;
     Span<Shape> shapes;
     Span<Prototype> prototypes;     // object instancing: empty when the scene has none
     Span<Instance> instances;

@@ -76,4 +76,23 @@ LU_INLINE bool IntersectAnalyticAlpha(const SceneView &s, uint32_t shapeId, cons
     return true;
 }
 
+// A bilinear patch's or curve's hit in (0, tMax) that survives the shape's alpha: t and the
+// primitive's (u, v). Unlike the quadrics' far side, a second hit on the same primitive behind
+// an ignored one is not looked for (a patch folded over the ray, a curve bent back over it).
+LU_INLINE bool IntersectPatchOrCurveAlpha(const SceneView &s, uint32_t shapeId, uint32_t prim, const Ray &ray,
+                                          const Ray &renderRay, uint32_t instance, Float tMax, Float *t, Float *b1,
+                                          Float *b2) {
+    const Shape &shape = s.shapes[shapeId];
+    if (!IntersectPatchOrCurve(s, shape, prim, ray, tMax, t, b1, b2)) return false;
+    if (shape.alpha == NoIndex) return true;
+    HitRecord h;
+    h.t = *t;
+    h.shape = shapeId;
+    h.primitive = prim;
+    h.b1 = *b1;
+    h.b2 = *b2;
+    h.instance = instance;
+    return AlphaTestHit(s, shape.alpha, renderRay, renderRay, h);
+}
+
 }  // namespace lu

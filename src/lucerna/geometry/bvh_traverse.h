@@ -71,7 +71,8 @@ LU_INLINE void IntersectChildBoxes(const BVHNode &n, const Vec3f &o, const Vec3f
     }
 }
 
-// Intersects one primitive reference in (0, tMax); b1, b2 are zero for analytic shapes.
+// Intersects one primitive reference in (0, tMax); b1, b2: a triangle's barycentrics, a patch's or
+// curve's (u, v), zero for quadrics.
 LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const Ray &ray, Float tMax, Float *t,
                                 Float *b1, Float *b2) {
     switch (ShapeKind(p.kind)) {
@@ -86,6 +87,9 @@ LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const 
     case ShapeKind::Cylinder:
         *b1 = *b2 = 0;
         return IntersectCylinder(scene.cylinders[scene.shapes[p.shape].index], ray, tMax, t);
+    case ShapeKind::BilinearPatches:
+    case ShapeKind::Curves:
+        return IntersectPatchOrCurve(scene, scene.shapes[p.shape], p.primitive, ray, tMax, t, b1, b2);
     }
     return false;
 }
@@ -97,11 +101,11 @@ LU_INLINE bool IntersectPrimRef(const PrimRef &p, const SceneView &scene, const 
 LU_INLINE bool IntersectPrimRefAlpha(const PrimRef &p, const SceneView &scene, const Ray &ray, const Ray &renderRay,
                                      uint32_t instance, Float tMax, Float *t, Float *b1, Float *b2) {
     if (scene.alphaShapes == 0) return IntersectPrimRef(p, scene, ray, tMax, t, b1, b2);
-    if (ShapeKind(p.kind) != ShapeKind::Triangles) {
+    if (IsQuadric(ShapeKind(p.kind))) {
         *b1 = *b2 = 0;
         return IntersectAnalyticAlpha(scene, p.shape, ray, renderRay, instance, tMax, t);
     }
-    if (!IntersectTriangle(p.p0, p.p1, p.p2, ray, tMax, t, b1, b2)) return false;
+    if (!IntersectPrimRef(p, scene, ray, tMax, t, b1, b2)) return false;
     uint32_t alpha = scene.shapes[p.shape].alpha;
     if (alpha == NoIndex) return true;
     HitRecord h;

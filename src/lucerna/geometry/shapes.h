@@ -7,6 +7,8 @@
 
 #include "lucerna/core/interaction.h"
 #include "lucerna/core/scene_data.h"
+#include "lucerna/geometry/bilinear_patch.h"
+#include "lucerna/geometry/curve.h"
 
 namespace lu {
 
@@ -167,8 +169,30 @@ LU_INLINE bool IntersectQuadric(const SceneView &s, const Shape &shape, const Ra
     case ShapeKind::Sphere: return IntersectSphere(s.spheres[shape.index], ray, tMax, tHit);
     case ShapeKind::Disk: return IntersectDisk(s.disks[shape.index], ray, tMax, tHit);
     case ShapeKind::Cylinder: return IntersectCylinder(s.cylinders[shape.index], ray, tMax, tHit);
-    case ShapeKind::Triangles: break;
+    case ShapeKind::Triangles:
+    case ShapeKind::BilinearPatches:
+    case ShapeKind::Curves: break;
     }
+    return false;
+}
+
+// Quadrics: one primitive per shape, hits carry t only (their far side matters to alpha).
+LU_INLINE bool IsQuadric(ShapeKind k) {
+    return k == ShapeKind::Sphere || k == ShapeKind::Disk || k == ShapeKind::Cylinder;
+}
+
+// Intersects primitive prim of a bilinear patch mesh or a curve set in (0, tMax): t and the
+// primitive's (u, v) in (b1, b2), which ComputeInteraction reads back. ray is in the space the
+// shape is stored in (a prototype's object space for instanced shapes).
+LU_INLINE bool IntersectPatchOrCurve(const SceneView &s, const Shape &shape, uint32_t prim, const Ray &ray, Float tMax,
+                                     Float *t, Float *b1, Float *b2) {
+    if (shape.kind == ShapeKind::BilinearPatches) {
+        const BilinearMesh &m = s.bilinearMeshes[shape.index];
+        uint32_t v[4];
+        PatchVertices(m, s, prim, v);
+        return IntersectBilinearPatch(PatchPositions(s, v), ray, tMax, t, b1, b2);
+    }
+    if (shape.kind == ShapeKind::Curves) return IntersectCurve(s, s.curveSets[shape.index], prim, ray, tMax, t, b1, b2);
     return false;
 }
 
@@ -202,6 +226,57 @@ LU_INLINE void TriangleRenderNormals(const SceneView &s, const TriangleMesh &m, 
 }
 LU_INLINE const Instance *InstanceOf(const SceneView &s, uint32_t instance) {
     return instance != NoIndex ? &s.instances[instance] : nullptr;
+}
+
+// A bilinear patch's corners (p00, p10, p01, p11) in render space: a prototype's through its instance.
+LU_INLINE PatchCorners PatchRenderCorners(const SceneView &s, const uint32_t v[4], const Instance *inst) {
+    PatchCorners c = PatchPositions(s, v);
+    if (inst) {
+        c.p00 = InstancePoint(inst->renderFromInstance, c.p00);
+        c.p10 = InstancePoint(inst->renderFromInstance, c.p10);
+        c.p01 = InstancePoint(inst->renderFromInstance, c.p01);
+        c.p11 = InstancePoint(inst->renderFromInstance, c.p11);
+    }
+    return c;
+}
+
+// The texture (s, t) of a patch at (u, v) and dp/ds, dp/dt: pbrt-v4's BilinearPatch with "uv"
+// (the (u, v) partials re-expressed in the texture coordinates, dp/dt turned to keep the
+// orientation of dp/du x dp/dv); without "uv", (s, t) = (u, v).
+LU_INLINE Vec2f PatchTextureFrame(const SceneView &s, const BilinearMesh &m, const uint32_t v[4], const PatchCorners &c,
+                                  Float u, Float w, Vec3f *dpds, Vec3f *dpdt) {
+    Vec3f dpdu = PatchDpdu(c, w), dpdv = PatchDpdv(c, u);
+    *dpds = dpdu;
+    *dpdt = dpdv;
+    if (m.uvOffset == NoIndex) return Vec2f(u, w);
+    Vec2f t[4];
+    for (int k = 0; k < 4; ++k) t[k] = s.uvs[m.uvOffset + (v[k] - m.firstVertex)];
+    Vec2f uv((t[0].x * (1 - u) + t[1].x * u) * (1 - w) + (t[2].x * (1 - u) + t[3].x * u) * w,
+             (t[0].y * (1 - u) + t[1].y * u) * (1 - w) + (t[2].y * (1 - u) + t[3].y * u) * w);
+    Vec2f dUVdu((t[1].x - t[0].x) * (1 - w) + (t[3].x - t[2].x) * w, (t[1].y - t[0].y) * (1 - w) + (t[3].y - t[2].y) * w);
+    Vec2f dUVdv((t[2].x - t[0].x) * (1 - u) + (t[3].x - t[1].x) * u, (t[2].y - t[0].y) * (1 - u) + (t[3].y - t[1].y) * u);
+    Float det = dUVdu.x * dUVdv.y - dUVdu.y * dUVdv.x;
+    if (std::abs(det) > 1e-12f) {
+        Vec3f ps = (dpdu * dUVdv.y - dpdv * dUVdu.y) / det;
+        Vec3f pt = (dpdv * dUVdu.x - dpdu * dUVdv.x) / det;
+        if (LengthSquared(Cross(ps, pt)) > 0) {
+            if (Dot(Cross(ps, pt), Cross(dpdu, dpdv)) < 0) pt = -pt;
+            *dpds = ps;
+            *dpdt = pt;
+        }
+    }
+    return uv;
+}
+
+// The interpolated vertex normal of a patch (render space, unnormalized).
+LU_INLINE Vec3f PatchShadingNormal(const SceneView &s, const BilinearMesh &m, const uint32_t v[4], const Instance *inst,
+                                   Float u, Float w) {
+    Vec3f n[4];
+    for (int k = 0; k < 4; ++k) {
+        n[k] = s.normals[m.normalOffset + (v[k] - m.firstVertex)];
+        if (inst) n[k] = InstanceNormal(inst->instanceFromRender, n[k]);
+    }
+    return (n[0] * (1 - u) + n[1] * u) * (1 - w) + (n[2] * (1 - u) + n[3] * u) * w;
 }
 
 // Builds the SurfaceInteraction for a hit found by any backend. A hit on an instance's shape
@@ -307,6 +382,49 @@ LU_INLINE SurfaceInteraction ComputeInteraction(const SceneView &s, const HitRec
         // pbrt-v4's Normalize(Cross(dpdu, dpdv)): outwards.
         Vec3f n = Normalize(cy.renderFromObject.ApplyNormal(Vec3f(pObj.x, pObj.y, 0)));
         if (cy.flipNormals) n = -n;
+        si.n = si.ns = n;
+        break;
+    }
+    case ShapeKind::BilinearPatches: {
+        // pbrt-v4's BilinearPatch::InteractionFromIntersection; (u, v) from the hit.
+        const BilinearMesh &m = s.bilinearMeshes[shape.index];
+        uint32_t v[4];
+        PatchVertices(m, s, hit.primitive, v);
+        PatchCorners c = PatchRenderCorners(s, v, inst);
+        Float u = hit.b1, w = hit.b2;
+        si.p = PatchPoint(c, u, w);
+        Vec3f dpds, dpdt;
+        si.uv = PatchTextureFrame(s, m, v, c, u, w, &dpds, &dpdt);
+        si.dpdu = dpds;
+        Vec3f n = Cross(PatchDpdu(c, w), PatchDpdv(c, u));
+        Float nl = Length(n);
+        n = nl > 0 ? n / nl : Vec3f(0, 0, 1);
+        if (m.flipNormals != (inst && inst->swapsHandedness)) n = -n;
+        si.n = si.ns = n;
+        if (m.normalOffset != NoIndex) {
+            Vec3f ns = PatchShadingNormal(s, m, v, inst, u, w);
+            Float l2 = LengthSquared(ns);
+            if (l2 > 0) {
+                si.ns = ns / std::sqrt(l2);
+                si.n = FaceForward(n, si.ns);
+            }
+        }
+        break;
+    }
+    case ShapeKind::Curves: {
+        // pbrt-v4's Curve: the point at the curve's depth along the ray, (u, v) from the hit.
+        CurveSet cs = s.curveSets[shape.index];
+        if (inst) cs.renderFromObject = InstanceTransform(*inst) * cs.renderFromObject;
+        const CurveSegment &seg = CurvePrimitiveSegment(s, cs, hit.primitive);
+        Vec3f dpdu, dpdv;
+        CurveFrame(cs, seg, hit.b1, hit.b2, cs.renderFromObject.Inverted().ApplyVector(ray.d), &dpdu, &dpdv);
+        si.p = ray(hit.t);
+        si.uv = Vec2f(hit.b1, hit.b2);
+        si.dpdu = cs.renderFromObject.ApplyVector(dpdu);
+        Vec3f n = cs.renderFromObject.ApplyNormal(Cross(dpdu, dpdv));
+        Float nl = Length(n);
+        n = nl > 0 ? n / nl : -Normalize(ray.d);
+        if (cs.flipNormals) n = -n;
         si.n = si.ns = n;
         break;
     }
@@ -462,8 +580,74 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);   // dpdu / R (pbrt-v4's Weingarten equations)
         return d;                                               // dndv = 0
     }
+    case ShapeKind::BilinearPatches: {
+        const BilinearMesh &m = s.bilinearMeshes[shape.index];
+        uint32_t v[4];
+        PatchVertices(m, s, si.primitive, v);
+        PatchCorners c = PatchRenderCorners(s, v, inst);
+        Vec2f uv = InvertBilinearPatch(c, si.p);
+        PatchTextureFrame(s, m, v, c, uv.x, uv.y, &d.dpdu, &d.dpdv);
+        if (m.normalOffset == NoIndex) return d;   // dndu = dndv = 0, as the patch's own normal (pbrt-v4)
+        // The unit shading normal's derivatives along dp/ds, dp/dt, through (u, v).
+        Vec3f N = PatchShadingNormal(s, m, v, inst, uv.x, uv.y);
+        Float len = Length(N);
+        if (!(len > 0)) return d;
+        constexpr Float h = 1e-3f;
+        Float u0 = Min(uv.x, 1 - h), v0 = Min(uv.y, 1 - h);
+        Vec3f dNdu = (PatchShadingNormal(s, m, v, inst, u0 + h, uv.y) - PatchShadingNormal(s, m, v, inst, u0, uv.y)) / h;
+        Vec3f dNdv = (PatchShadingNormal(s, m, v, inst, uv.x, v0 + h) - PatchShadingNormal(s, m, v, inst, uv.x, v0)) / h;
+        // d = a dpdu + b dpdv in the patch's tangent plane: dN along d = a dNdu + b dNdv.
+        Vec3f pu = PatchDpdu(c, uv.y), pv = PatchDpdv(c, uv.x);
+        Float g11 = Dot(pu, pu), g12 = Dot(pu, pv), g22 = Dot(pv, pv), det = g11 * g22 - g12 * g12;
+        auto along = [&](const Vec3f &dir) {
+            if (!(std::abs(det) > 0)) return Vec3f(0, 0, 0);
+            Float r1 = Dot(pu, dir), r2 = Dot(pv, dir);
+            Float a = (g22 * r1 - g12 * r2) / det, b = (g11 * r2 - g12 * r1) / det;
+            Vec3f dN = dNdu * a + dNdv * b;
+            return (dN - si.ns * Dot(si.ns, dN)) / len;
+        };
+        d.dndu = along(d.dpdu);
+        d.dndv = along(d.dpdv);
+        Vec3f ts = Cross(si.ns, d.dpdu);
+        if (LengthSquared(ts) > 0) {
+            d.dpdu = Cross(ts, si.ns);
+            d.dpdv = ts;
+        } else {
+            CoordinateSystem(si.ns, &d.dpdu, &d.dpdv);
+        }
+        return d;
+    }
+    case ShapeKind::Curves: {
+        // pbrt-v4's curve partials; its dndu, dndv are zero.
+        CurveSet cs = s.curveSets[shape.index];
+        if (inst) cs.renderFromObject = InstanceTransform(*inst) * cs.renderFromObject;
+        const CurveSegment &seg = CurvePrimitiveSegment(s, cs, si.primitive);
+        Vec3f dpdu, dpdv;
+        CurveFrame(cs, seg, si.uv.x, si.uv.y, cs.renderFromObject.Inverted().ApplyVector(-si.wo), &dpdu, &dpdv);
+        d.dpdu = cs.renderFromObject.ApplyVector(dpdu);
+        d.dpdv = cs.renderFromObject.ApplyVector(dpdv);
+        return d;
+    }
     }
     return d;
+}
+
+// Box of primitive prim of a bilinear patch mesh (its corners: the patch is in their convex
+// hull) or of a curve set (the piece's object-space box, transformed), in the shape's space.
+LU_INLINE Bounds3f PatchOrCurveBounds(const SceneView &s, const Shape &shape, uint32_t prim) {
+    Bounds3f b;
+    if (shape.kind == ShapeKind::BilinearPatches) {
+        uint32_t v[4];
+        PatchVertices(s.bilinearMeshes[shape.index], s, prim, v);
+        for (int k = 0; k < 4; ++k) b.Expand(s.positions[v[k]]);
+    } else if (shape.kind == ShapeKind::Curves) {
+        const CurveSet &cs = s.curveSets[shape.index];
+        Bounds3f o = CurvePieceObjectBounds(s, cs, prim);
+        for (int i = 0; i < 8; ++i)
+            b.Expand(cs.renderFromObject.ApplyPoint(Vec3f((i & 1) ? o.pMax.x : o.pMin.x, (i & 2) ? o.pMax.y : o.pMin.y,
+                                                          (i & 4) ? o.pMax.z : o.pMin.z)));
+    }
+    return b;
 }
 
 // Surface area of one primitive (for light power and area sampling).
@@ -491,6 +675,12 @@ LU_INLINE Float PrimitiveArea(const SceneView &s, const Shape &shape, uint32_t p
         Float sc = Length(cy.renderFromObject.ApplyVector(Vec3f(1, 0, 0)));
         return CylinderArea(cy) * Sqr(sc);
     }
+    case ShapeKind::BilinearPatches: {
+        uint32_t v[4];
+        PatchVertices(s.bilinearMeshes[shape.index], s, prim, v);
+        return BilinearPatchArea(PatchPositions(s, v));
+    }
+    case ShapeKind::Curves: return 0;   // not an emitter (scene/build_shapes.cpp refuses curve area lights)
     }
     return 0;
 }

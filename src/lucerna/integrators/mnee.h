@@ -93,8 +93,10 @@ LU_INLINE MneeSurfaceKind ClassifyMneeSurface(const SceneView &scene, const HitR
     // Instanced shapes (object space geometry) are not chain vertices: the solver reads the
     // render-space mesh (ShadingNormalDerivative); they block, as in every query of the walk.
     if (hit.instance != NoIndex) return MneeSurfaceKind::Blocking;
-    // Cylinders are not chain vertices either (the solver is tested on spheres and meshes).
-    if (shape.kind == ShapeKind::Cylinder) return MneeSurfaceKind::Blocking;
+    // Cylinders, curved bilinear patches and curves are not chain vertices either (the solver is
+    // tested on spheres and meshes).
+    if (shape.kind == ShapeKind::Cylinder || shape.kind == ShapeKind::BilinearPatches || shape.kind == ShapeKind::Curves)
+        return MneeSurfaceKind::Blocking;
     // Nor cut-outs: the solver moves vertices over the surface, holes included.
     if (shape.alpha != NoIndex) return MneeSurfaceKind::Blocking;
     const Material &mat = ResolveMixMaterial(scene.materials[si.material], si, scene);   // a mix: its pick at si

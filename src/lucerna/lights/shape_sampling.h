@@ -61,22 +61,6 @@ LU_INLINE Float SphericalTriangleArea(const Vec3f &a, const Vec3f &b, const Vec3
     return std::abs(2 * Atan2Poly(Dot(a, Cross(b, c)), 1 + Dot(a, b) + Dot(a, c) + Dot(b, c)));
 }
 
-// Bilinear density on [0,1]^2 with corner weights w = {f(0,0), f(1,0), f(0,1), f(1,1)}.
-LU_INLINE Float BilinearPDF(Vec2f p, const Float w[4]) {
-    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) return 0;
-    Float sum = w[0] + w[1] + w[2] + w[3];
-    if (sum == 0) return 1;
-    return 4 * ((1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] + p.x * p.y * w[3]) / sum;
-}
-
-// Samples the bilinear density: y from the marginal, then x from the conditional (both linear).
-LU_INLINE Vec2f SampleBilinear(Vec2f u, const Float w[4]) {
-    Vec2f p;
-    p.y = SampleLinear(u.y, w[0] + w[1], w[2] + w[3]);
-    p.x = SampleLinear(u.x, Lerp(p.y, w[0], w[2]), Lerp(p.y, w[1], w[3]));
-    return p;
-}
-
 // Uniform sampling of the solid angle subtended by triangle v from p (Arvo 1995). Returns the
 // barycentrics of the sampled point; *pdf = 1 / solid angle, or 0 for degenerate triangles.
 // This version takes the unit directions dir[i] = Normalize(v[i] - p) and the solid angle
@@ -204,6 +188,12 @@ LU_INLINE Float ShapeArea(const SceneView &s, const Shape &shape, uint32_t prim)
     case ShapeKind::Sphere: return SphereArea(s.spheres[shape.index]);
     case ShapeKind::Disk: return DiskArea(s.disks[shape.index]);
     case ShapeKind::Cylinder: return CylinderArea(s.cylinders[shape.index]);
+    case ShapeKind::BilinearPatches: {
+        uint32_t v[4];
+        PatchVertices(s.bilinearMeshes[shape.index], s, prim, v);
+        return BilinearPatchArea(PatchPositions(s, v));
+    }
+    case ShapeKind::Curves: return 0;   // curves are never emitters
     }
     return 0;
 }
@@ -508,6 +498,47 @@ LU_INLINE bool SampleCylinder(const Cylinder &cy, const LightSampleContext &ctx,
     return ss->pdf > 0;
 }
 
+// pbrt-v4's BilinearPatch::Sample for a patch that is not a rectangle (rectangles and other
+// parallelograms are triangle pairs here): (u, v) by SampleBilinear with the corners' area
+// elements as weights, area pdf BilinearPDF / |dp/du x dp/dv|, converted to solid angle; the
+// normal flipped as the hit's (by the interpolated vertex normal when the mesh has them).
+LU_INLINE bool SampleBilinearPatchShape(const SceneView &s, const Shape &shape, uint32_t prim,
+                                        const LightSampleContext &ctx, Vec2f u, ShapeSample *ss) {
+    const BilinearMesh &m = s.bilinearMeshes[shape.index];
+    uint32_t v[4];
+    PatchVertices(m, s, prim, v);
+    PatchCorners c = PatchPositions(s, v);
+    Float w[4];
+    PatchCornerWeights(c, w);
+    Vec2f uv = SampleBilinear(u, w);
+    Vec3f n = Cross(PatchDpdu(c, uv.y), PatchDpdv(c, uv.x));
+    Float dA = Length(n);
+    if (!(dA > 0)) return false;
+    n = n / dA;
+    if (m.flipNormals) n = -n;
+    if (m.normalOffset != NoIndex) {
+        Vec3f ns = PatchShadingNormal(s, m, v, nullptr, uv.x, uv.y);
+        if (LengthSquared(ns) > 0) n = FaceForward(n, ns);
+    }
+    ss->p = PatchPoint(c, uv.x, uv.y);
+    ss->n = n;
+    Vec3f dpds, dpdt;
+    ss->uv = PatchTextureFrame(s, m, v, c, uv.x, uv.y, &dpds, &dpdt);
+    Vec3f d = ss->p - ctx.p;
+    if (LengthSquared(d) == 0) return false;
+    ss->pdf = AreaToSolidAnglePDF(BilinearPDF(uv, w) / dA, ctx.p, ss->p, ss->n, Normalize(d));
+    return ss->pdf > 0;
+}
+
+LU_INLINE Float BilinearPatchShapePDF(const SceneView &s, const Shape &shape, uint32_t prim,
+                                      const LightSampleContext &ctx, const Vec3f &wi, const Vec3f &pLight,
+                                      const Vec3f &nLight) {
+    uint32_t v[4];
+    PatchVertices(s.bilinearMeshes[shape.index], s, prim, v);
+    PatchCorners c = PatchPositions(s, v);
+    return AreaToSolidAnglePDF(PatchAreaPDF(c, InvertBilinearPatch(c, pLight)), ctx.p, pLight, nLight, wi);
+}
+
 // Samples primitive `prim` of `shape` from ctx. Returns false (and no sample) on failure.
 // wantUV = false leaves ss->uv unset where computing it costs (the cone-sampled sphere); the
 // area lights' emission depends on uv only through an alpha texture or an image (SampleLi asks
@@ -519,6 +550,8 @@ LU_INLINE bool SampleShape(const SceneView &s, const Shape &shape, uint32_t prim
     case ShapeKind::Sphere: return SampleSphere(s.spheres[shape.index], ctx, u, ss, wantUV);
     case ShapeKind::Disk: return SampleDisk(s.disks[shape.index], ctx, u, ss);
     case ShapeKind::Cylinder: return SampleCylinder(s.cylinders[shape.index], ctx, u, ss);
+    case ShapeKind::BilinearPatches: return SampleBilinearPatchShape(s, shape, prim, ctx, u, ss);
+    case ShapeKind::Curves: return false;
     }
     return false;
 }
@@ -533,6 +566,8 @@ LU_INLINE Float ShapePDF(const SceneView &s, const Shape &shape, uint32_t prim, 
     case ShapeKind::Disk: return AreaToSolidAnglePDF(1 / DiskArea(s.disks[shape.index]), ctx.p, pLight, nLight, wi);
     case ShapeKind::Cylinder:
         return AreaToSolidAnglePDF(1 / CylinderArea(s.cylinders[shape.index]), ctx.p, pLight, nLight, wi);
+    case ShapeKind::BilinearPatches: return BilinearPatchShapePDF(s, shape, prim, ctx, wi, pLight, nLight);
+    case ShapeKind::Curves: return 0;
     }
     return 0;
 }

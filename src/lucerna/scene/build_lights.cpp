@@ -502,6 +502,14 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
         Float r = cy.radius;
         *center = cy.renderFromObject.ApplyPoint(Vec3f(0, 0, (cy.zMin + cy.zMax) / 2));
         *radius = MaxCornerDistance(cy.renderFromObject, *center, Vec3f(-r, -r, cy.zMin), Vec3f(r, r, cy.zMax));
+    } else if (shape.kind == ShapeKind::BilinearPatches) {
+        // The patch lies in the convex hull of its corners.
+        uint32_t v[4];
+        PatchVertices(s.bilinearMeshes[shape.index], s, l.primitive, v);
+        PatchCorners c = PatchPositions(s, v);
+        *center = (c.p00 + c.p10 + c.p01 + c.p11) / Float(4);
+        *radius = std::sqrt(Max(Max(DistanceSquared(*center, c.p00), DistanceSquared(*center, c.p10)),
+                                Max(DistanceSquared(*center, c.p01), DistanceSquared(*center, c.p11))));
     }
 }
 

@@ -1,4 +1,4 @@
-// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk, cylinder), their area
+// Lucerna scene builder: shapes (trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk, cylinder, curve), their area
 // lights and object instances (prototypes in object space plus instance records, or flattened), after pbrt-v4's shapes.cpp Create() functions,
 // TriangleMesh (util/mesh.cpp) and BasicScene::CreateLights / CreateAggregate (scene.cpp).
 #include <cmath>
@@ -233,8 +233,84 @@ void BuildPlyMesh(BuildContext &ctx, const Placement &pl) {
     AddTriangles(ctx, pl, m);
 }
 
-// pbrt-v4's bilinear patches (vertices p00, p10, p01, p11), triangulated as (p00, p10, p11) and
-// (p00, p11, p01); each patch gets its own four vertices with the patch's (u, v) when no "uv".
+// Adds curved bilinear patches natively (geometry/bilinear_patch.h): render-space corners, each
+// patch its own four vertices; normals by the inverse transpose and negated for
+// ReverseOrientation, as the triangle meshes'. vi: four object-space vertex indices per patch.
+void AddBilinearPatches(BuildContext &ctx, const Placement &pl, const std::vector<Vec3f> &P, const std::vector<Vec3f> &N,
+                        const std::vector<Vec2f> &uv, const std::vector<uint32_t> &vi) {
+    HostScene &s = ctx.scene;
+    const Transform &t = pl.renderFromObject;
+    const uint32_t patchCount = uint32_t(vi.size() / 4);
+    if (patchCount == 0) return;
+    BilinearMesh bm;
+    bm.firstVertex = uint32_t(s.positions.size());
+    bm.vertexCount = 4 * patchCount;
+    bm.firstIndex = uint32_t(s.indices.size());
+    bm.patchCount = patchCount;
+    bm.flipNormals = pl.reverseOrientation != t.SwapsHandedness();
+    bool useNormals = !N.empty() && !pl.singular;
+    for (uint32_t k = 0; k < vi.size() && useNormals; ++k) {
+        Vec3f n = t.ApplyNormal(N[vi[k]]);
+        useNormals = IsFinite(n.x) && IsFinite(n.y) && IsFinite(n.z);
+    }
+    if (!N.empty() && !useNormals)
+        ShapeWarning(ctx, pl, "bilinearmesh: the transformation is not invertible; the per-vertex normals \"N\" are "
+                              "discarded (the geometric normal is used)");
+    if (useNormals) bm.normalOffset = uint32_t(s.normals.size());
+    if (!uv.empty()) bm.uvOffset = uint32_t(s.uvs.size());
+    std::vector<Float> areas(patchCount);
+    for (uint32_t q = 0; q < patchCount; ++q) {
+        PatchCorners c;
+        Vec3f *corner[4] = {&c.p00, &c.p10, &c.p01, &c.p11};
+        for (int k = 0; k < 4; ++k) {
+            uint32_t v = vi[4 * q + k];
+            Vec3f p = t.ApplyPoint(P[v]);
+            if (!IsFinite(p.x) || !IsFinite(p.y) || !IsFinite(p.z))
+                Fail(pl.shape->loc, "bilinearmesh: vertex " + std::to_string(v) + " is not finite after the transformation" + pl.where);
+            *corner[k] = p;
+            s.positions.push_back(p);
+            s.bounds.Expand(p);
+            s.indices.push_back(4 * q + uint32_t(k));
+            if (useNormals) {
+                Vec3f n = t.ApplyNormal(N[v]);
+                s.normals.push_back(pl.reverseOrientation ? -n : n);
+            }
+            if (!uv.empty()) s.uvs.push_back(uv[v]);
+        }
+        areas[q] = BilinearPatchArea(c);
+    }
+    Shape shape;
+    shape.kind = ShapeKind::BilinearPatches;
+    shape.index = uint32_t(s.bilinearMeshes.size());
+    shape.material = pl.material;
+    shape.primitiveCount = patchCount;
+    uint32_t shapeIndex = uint32_t(s.shapes.size());
+    if (pl.areaLight) shape.areaLight = AddAreaLights(ctx, pl, shapeIndex, areas);
+    s.bilinearMeshes.push_back(bm);
+    s.shapes.push_back(shape);
+    s.stats.bilinearPatches += patchCount;
+}
+
+// Whether four values of a patch's corners are an affine function of (u, v) (p00 + p11 =
+// p10 + p01, to rounding): then the bilinear interpolation over the patch is the linear one over
+// each of its two triangles.
+template <typename V>
+bool AffineCorners(const V &a00, const V &a10, const V &a01, const V &a11, Float scale) {
+    V d = (a00 + a11) - (a10 + a01);
+    Float dd = 0, ss = 0;
+    const Float *pd = &d.x, *p00 = &a00.x, *p11 = &a11.x;
+    for (size_t i = 0; i < sizeof(V) / sizeof(Float); ++i) {
+        dd = Max(dd, std::abs(pd[i]));
+        ss = Max(ss, Max(std::abs(p00[i] - p11[i]), std::abs(p00[i])));
+    }
+    return dd <= scale * ss;
+}
+
+// pbrt-v4's bilinear patches (vertices p00, p10, p01, p11). A patch whose corners make a
+// parallelogram, with affine uv and normals, is exactly the two triangles (p00, p10, p11) and
+// (p00, p11, p01) (with the patch's (u, v) as uv when there is no "uv"), and is rendered as them
+// (Embree's triangles are faster than the patch test); any other patch is a native bilinear
+// patch. Both kinds of one Shape become two shapes.
 void BuildBilinearMesh(BuildContext &ctx, const Placement &pl) {
     const ShapeEntity &sh = *pl.shape;
     const ParameterDictionary &p = sh.params;
@@ -264,36 +340,36 @@ void BuildBilinearMesh(BuildContext &ctx, const Placement &pl) {
         N.clear();
     }
     MeshData m;
-    bool warned = false;
+    std::vector<uint32_t> curved;   // the native patches' vertex indices
     static const Vec2f patchUV[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
     for (size_t q = 0; q < vi.size(); q += 4) {
+        const uint32_t *v = &vi[q];
+        Vec3f w[4];
+        for (int k = 0; k < 4; ++k) w[k] = pl.renderFromObject.ApplyPoint(P[v[k]]);
+        bool flat = AffineCorners(w[0], w[1], w[2], w[3], Float(1e-5)) &&
+                    (uv.empty() || AffineCorners(uv[v[0]], uv[v[1]], uv[v[2]], uv[v[3]], Float(1e-5))) &&
+                    (N.empty() || AffineCorners(N[v[0]], N[v[1]], N[v[2]], N[v[3]], Float(1e-5)));
+        if (!flat) {
+            curved.insert(curved.end(), v, v + 4);
+            continue;
+        }
         uint32_t base = uint32_t(m.P.size());
         for (int k = 0; k < 4; ++k) {
-            uint32_t v = vi[q + k];
-            m.P.push_back(P[v]);
-            if (!N.empty()) m.N.push_back(N[v]);
-            m.uv.push_back(uv.empty() ? patchUV[k] : uv[v]);
+            m.P.push_back(P[v[k]]);
+            if (!N.empty()) m.N.push_back(N[v[k]]);
+            m.uv.push_back(uv.empty() ? patchUV[k] : uv[v[k]]);
         }
         const uint32_t tri[6] = {0, 1, 3, 0, 3, 2};
         for (uint32_t k : tri) m.indices.push_back(base + k);
-        // Render-space patch area (pbrt-v4 normalizes "power" per patch) and planarity.
-        Vec3f w[4];
-        for (int k = 0; k < 4; ++k) w[k] = pl.renderFromObject.ApplyPoint(m.P[base + k]);
+        // Render-space patch area (pbrt-v4 normalizes "power" per patch).
         Float a0 = 0.5f * Length(Cross(w[1] - w[0], w[3] - w[0]));
         Float a1 = 0.5f * Length(Cross(w[3] - w[0], w[2] - w[0]));
         m.powerArea.push_back(a0 + a1);
         m.powerArea.push_back(a0 + a1);
-        Vec3f n = Cross(w[1] - w[0], w[2] - w[0]);
-        Float size = Max(Length(w[3] - w[0]), Length(w[2] - w[1]));
-        if (!warned && LengthSquared(n) > 0 && size > 0 &&
-            std::abs(Dot(Normalize(n), w[3] - w[0])) > 1e-4f * size) {
-            ctx.diag.Warning(sh.loc, "bilinearmesh: patch " + std::to_string(q / 4) +
-                                         " is not planar; rendered as two triangles (pbrt-v4 renders the curved patch)");
-            warned = true;
-        }
     }
     if (!pl.areaLight) m.powerArea.clear();
-    AddTriangles(ctx, pl, m);
+    if (!m.indices.empty()) AddTriangles(ctx, pl, m);
+    AddBilinearPatches(ctx, pl, P, N, uv, curved);
 }
 
 // Adds the render-space box of an analytic shape's object-space box to the scene bounds; a
@@ -411,6 +487,133 @@ void BuildCylinder(BuildContext &ctx, const Placement &pl) {
     ctx.scene.cylinders.push_back(c);
 }
 
+// pbrt-v4's Curve::Create: "P" control points of a "bezier" (degree + 1 + n degree of them) or
+// uniform "bspline" (at least degree + 1) curve of "degree" 2 or 3, each segment turned into a
+// cubic Bezier segment; widths "width0" to "width1" ("width", default 1) spread linearly over
+// the segments; "type" flat, cylinder or ribbon ("N": a normal per segment end, ribbons only);
+// each segment split into 2^"splitdepth" (default 3) primitives. pbrt-v4 reports bad counts and
+// an unknown type and renders on without the shape; here they are located errors.
+void BuildCurve(BuildContext &ctx, const Placement &pl) {
+    const ShapeEntity &sh = *pl.shape;
+    const ParameterDictionary &p = sh.params;
+    Float width = Float(p.GetOneFloat("width", 1));
+    Float width0 = Float(p.GetOneFloat("width0", width)), width1 = Float(p.GetOneFloat("width1", width));
+    int degree = p.GetOneInt("degree", 3);
+    std::string basis = p.GetOneString("basis", "bezier");
+    std::string typeName = p.GetOneString("type", "flat");
+    int splitDepth = p.GetOneInt("splitdepth", 3);
+    std::vector<Vec3f> cp = p.GetPoint3fArray("P");
+    std::vector<Vec3f> N = p.GetNormal3fArray("N");
+    if (pl.areaLight)
+        FailUnsupported(sh.loc, "AreaLightSource on a \"curve\" shape (pbrt-v4 cannot sample curves either: its "
+                                "Curve::Sample is not implemented)");
+    if (degree != 2 && degree != 3) Fail(ParamLoc(p, "degree", sh.loc), "curve: \"degree\" must be 2 or 3");
+    if (basis != "bezier" && basis != "bspline")
+        Fail(ParamLoc(p, "basis", sh.loc), "curve: unknown \"basis\" " + Quoted(basis) + " (bezier or bspline)");
+    CurveType type;
+    if (typeName == "flat") type = CurveType::Flat;
+    else if (typeName == "cylinder") type = CurveType::Cylinder;
+    else if (typeName == "ribbon") type = CurveType::Ribbon;
+    else Fail(ParamLoc(p, "type", sh.loc), "curve: unknown \"type\" " + Quoted(typeName) + " (flat, cylinder or ribbon)");
+    if (!(width0 >= 0) || !(width1 >= 0) || !IsFinite(width0) || !IsFinite(width1))
+        Fail(sh.loc, "curve: widths must be finite and not negative");
+    if (splitDepth < 0 || splitDepth > 10)
+        Fail(ParamLoc(p, "splitdepth", sh.loc), "curve: \"splitdepth\" must be in [0, 10] (2^splitdepth primitives per segment)");
+    const size_t n = cp.size();
+    size_t nSegments = 0;
+    if (basis == "bezier") {
+        if (n < size_t(degree) + 1 || (n - 1 - size_t(degree)) % size_t(degree) != 0)
+            Fail(ParamLoc(p, "P", sh.loc), "curve: " + std::to_string(n) + " control points; a degree " +
+                                               std::to_string(degree) + " Bezier curve needs " + std::to_string(degree + 1) +
+                                               " + k * " + std::to_string(degree) + " of them (k >= 0)");
+        nSegments = (n - 1) / size_t(degree);
+    } else {
+        if (n < size_t(degree) + 1)
+            Fail(ParamLoc(p, "P", sh.loc), "curve: " + std::to_string(n) + " control points; a degree " +
+                                               std::to_string(degree) + " b-spline needs at least " + std::to_string(degree + 1));
+        nSegments = n - size_t(degree);
+    }
+    if (!N.empty() && type != CurveType::Ribbon) {
+        ctx.diag.Warning(ParamLoc(p, "N", sh.loc), "curve: normals \"N\" are only used by \"ribbon\" curves; discarded");
+        N.clear();
+    } else if (type == CurveType::Ribbon && N.size() != nSegments + 1) {
+        Fail(ParamLoc(p, "N", sh.loc), "curve: a ribbon curve of " + std::to_string(nSegments) + " segments needs " +
+                                           std::to_string(nSegments + 1) + " normals \"N\" (one per segment end), not " +
+                                           std::to_string(N.size()));
+    }
+    if (pl.singular) return DropSingular(ctx, pl);
+    uint64_t primitives = uint64_t(nSegments) << splitDepth;
+    if (primitives > (uint64_t(1) << 31))
+        Fail(sh.loc, "curve: " + std::to_string(primitives) + " primitives (segments x 2^splitdepth) are too many");
+    HostScene &s = ctx.scene;
+    CurveSet cs;
+    cs.renderFromObject = pl.renderFromObject;
+    cs.firstSegment = uint32_t(s.curveSegments.size());
+    cs.segmentCount = uint32_t(nSegments);
+    cs.type = type;
+    cs.splitDepth = uint8_t(splitDepth);
+    cs.flipNormals = pl.reverseOrientation != pl.analyticSwapsHandedness;
+    auto lerp3 = [](Float t, const Vec3f &a, const Vec3f &b) { return a + (b - a) * t; };
+    for (size_t seg = 0; seg < nSegments; ++seg) {
+        CurveSegment cs4;
+        Vec3f *q = cs4.cp;
+        if (basis == "bezier") {
+            const Vec3f *c = &cp[seg * size_t(degree)];
+            if (degree == 3) {
+                for (int i = 0; i < 4; ++i) q[i] = c[i];
+            } else {   // pbrt-v4's ElevateQuadraticBezierToCubic
+                q[0] = c[0];
+                q[1] = lerp3(Float(2) / 3, c[0], c[1]);
+                q[2] = lerp3(Float(1) / 3, c[1], c[2]);
+                q[3] = c[2];
+            }
+        } else {
+            const Vec3f *c = &cp[seg];
+            if (degree == 3) {   // pbrt-v4's CubicBSplineToBezier
+                q[0] = (c[0] + c[1] * 4 + c[2]) / Float(6);
+                q[1] = (c[1] * 2 + c[2]) / Float(3);
+                q[2] = (c[1] + c[2] * 2) / Float(3);
+                q[3] = (c[1] + c[2] * 4 + c[3]) / Float(6);
+            } else {             // QuadraticBSplineToBezier, then elevated
+                Vec3f b0 = (c[0] + c[1]) / Float(2), b1 = c[1], b2 = (c[1] + c[2]) / Float(2);
+                q[0] = b0;
+                q[1] = lerp3(Float(2) / 3, b0, b1);
+                q[2] = lerp3(Float(1) / 3, b1, b2);
+                q[3] = b2;
+            }
+        }
+        cs4.width[0] = Lerp(Float(seg) / Float(nSegments), width0, width1);
+        cs4.width[1] = Lerp(Float(seg + 1) / Float(nSegments), width0, width1);
+        if (type == CurveType::Ribbon) {
+            for (int e = 0; e < 2; ++e) {
+                Vec3f nn = N[seg + size_t(e)];
+                if (!(LengthSquared(nn) > 0)) Fail(ParamLoc(p, "N", sh.loc), "curve: a ribbon normal \"N\" is zero");
+                cs4.n[e] = Normalize(nn);
+            }
+        }
+        s.curveSegments.push_back(cs4);
+    }
+    Shape shape;
+    shape.kind = ShapeKind::Curves;
+    shape.index = uint32_t(s.curveSets.size());
+    shape.material = pl.material;
+    shape.primitiveCount = uint32_t(primitives);
+    s.curveSets.push_back(cs);
+    s.shapes.push_back(shape);
+    s.stats.curveSegments += nSegments;
+    // Scene bounds: every piece's box.
+    SceneView view = s.View();
+    const Shape &added = s.shapes.back();
+    for (uint32_t prim = 0; prim < added.primitiveCount; ++prim) {
+        Bounds3f b = PatchOrCurveBounds(view, added, prim);
+        if (!IsFinite(b.pMin.x) || !IsFinite(b.pMin.y) || !IsFinite(b.pMin.z) || !IsFinite(b.pMax.x) ||
+            !IsFinite(b.pMax.y) || !IsFinite(b.pMax.z))
+            Fail(sh.loc, "curve: the transformation sends the shape to infinity" + pl.where);
+        s.bounds.Expand(b.pMin);
+        s.bounds.Expand(b.pMax);
+    }
+}
+
 // A finite transformation is required (an instance's product of two can overflow); a singular one
 // sets pl.singular.
 void CheckTransform(Placement &pl, const FileLoc &loc) {
@@ -484,8 +687,7 @@ void BuildOne(BuildContext &ctx, const Placement &pl, bool reportUnused) {
     else if (name == "disk") BuildDisk(ctx, pl);
     else if (name == "loopsubdiv") BuildLoopSubdiv(ctx, pl);
     else if (name == "cylinder") BuildCylinder(ctx, pl);
-    else if (name == "curve")
-        FailUnsupported(sh.loc, "Shape " + Quoted(name));
+    else if (name == "curve") BuildCurve(ctx, pl);
     else
         Fail(sh.loc, "unknown shape type " + Quoted(name));
     for (size_t i = firstShape; i < ctx.scene.shapes.size(); ++i) ctx.scene.shapes[i].alpha = alpha;

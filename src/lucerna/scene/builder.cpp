@@ -32,6 +32,9 @@ SceneView HostScene::View() const {
     v.spheres = SpanOf(spheres);
     v.disks = SpanOf(disks);
     v.cylinders = SpanOf(cylinders);
+    v.bilinearMeshes = SpanOf(bilinearMeshes);
+    v.curveSets = SpanOf(curveSets);
+    v.curveSegments = SpanOf(curveSegments);
     v.shapes = SpanOf(shapes);
     v.prototypes = SpanOf(prototypes);
     v.instances = SpanOf(instances);

@@ -23,6 +23,8 @@ struct SceneStats {
     std::map<std::string, int> materialsByType;  // every Material / MakeNamedMaterial, "interface" included
     std::map<std::string, int> mediaByType;      // MakeNamedMedium types
     uint64_t triangles = 0;                      // rendered, after triangulating (each instance's counted)
+    uint64_t bilinearPatches = 0;                // curved patches kept as patches (each Shape directive once)
+    uint64_t curveSegments = 0;                  // cubic Bezier segments of "curve" shapes (each directive once)
     int areaLightShapes = 0;                     // shapes carrying an AreaLightSource
     int floatTextures = 0, spectrumTextures = 0;
     int instanceDefinitions = 0, instanceUses = 0;
@@ -61,6 +63,9 @@ class HostScene {
     std::vector<Sphere> spheres;
     std::vector<Disk> disks;
     std::vector<Cylinder> cylinders;
+    std::vector<BilinearMesh> bilinearMeshes;
+    std::vector<CurveSet> curveSets;
+    std::vector<CurveSegment> curveSegments;
     std::vector<Shape> shapes;
     std::vector<Prototype> prototypes;   // object instancing (build_shapes.cpp says which uses are instanced)
     std::vector<Instance> instances;

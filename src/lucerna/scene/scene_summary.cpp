@@ -54,6 +54,8 @@ std::string SceneSummary(const HostScene &s, const Diagnostics &diag) {
     if (!s.outputFilename.empty()) o << "output: " << s.outputFilename << "\n";
     o << "shapes: " << Counts(st.shapesByType) << "\n";
     o << "triangles: " << st.triangles << "\n";
+    if (st.bilinearPatches > 0) o << "bilinear patches: " << st.bilinearPatches << "\n";
+    if (st.curveSegments > 0) o << "curve segments: " << st.curveSegments << "\n";
     o << "lights: " << Counts(st.lightsByType) << "\n";
     for (const std::string &l : st.lightProfiles) o << "  " << l << "\n";
     o << "materials: " << Counts(st.materialsByType) << "\n";

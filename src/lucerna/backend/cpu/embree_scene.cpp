@@ -54,6 +54,15 @@ bool IntersectAnalytic(const SceneView &s, uint32_t shape, const Ray &r, const R
     return IntersectAnalyticAlpha(s, shape, r, *ac.renderRay, ac.instance, tMax, t);
 }
 
+// A user geometry's primitive: a quadric (one per shape; its alpha's far side) or a bilinear
+// patch or curve piece, whose (u, v) the hit carries.
+bool IntersectUser(const SceneView &s, uint32_t shape, uint32_t prim, const Ray &r, const RTCIntersectContext *c,
+                   Float tMax, Float *t, Float *u, Float *v) {
+    if (IsQuadric(s.shapes[shape].kind)) return IntersectAnalytic(s, shape, r, c, tMax, t);
+    const EmbreeAlphaContext &ac = AlphaContext(c);
+    return IntersectPatchOrCurveAlpha(s, shape, prim, r, *ac.renderRay, ac.instance, tMax, t, u, v);
+}
+
 // Triangle meshes with alpha: drops the candidate hits the cut-out ignores (intersect and occluded).
 void AlphaFilter(const RTCFilterFunctionNArguments *args) {
     auto *d = static_cast<const EmbreeUserData *>(args->geometryUserPtr);
@@ -75,7 +84,8 @@ void AlphaFilter(const RTCFilterFunctionNArguments *args) {
 
 void UserBounds(const RTCBoundsFunctionArguments *args) {
     auto *d = static_cast<const UserGeomData *>(args->geometryUserPtr);
-    Bounds3f b = ShapeBounds(*d->view, d->view->shapes[d->shape]);
+    const Shape &shape = d->view->shapes[d->shape];
+    Bounds3f b = IsQuadric(shape.kind) ? ShapeBounds(*d->view, shape) : PatchOrCurveBounds(*d->view, shape, args->primID);
     assert(IsFinite3(b.pMin) && IsFinite3(b.pMax) && "Embree user geometry: non-finite bounds");
     // Pad slightly: the bounds must enclose float-rounded hits.
     Vec3f pad = (b.pMax - b.pMin) * 1e-5f + Vec3f(1e-6f, 1e-6f, 1e-6f);
@@ -94,14 +104,14 @@ void UserIntersect(const RTCIntersectFunctionNArguments *args) {
         r.o = Vec3f(RTCRayN_org_x(rn, args->N, i), RTCRayN_org_y(rn, args->N, i), RTCRayN_org_z(rn, args->N, i));
         r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
         Float tfar = RTCRayN_tfar(rn, args->N, i);
-        Float t;
-        if (!IntersectAnalytic(*d->view, d->shape, r, args->context, tfar, &t)) continue;
+        Float t, u = 0, v = 0;
+        if (!IntersectUser(*d->view, d->shape, args->primID, r, args->context, tfar, &t, &u, &v)) continue;
         assert(t >= 0 && t <= tfar && "Embree user geometry: hit distance NaN or out of the ray's range");
         RTCRayN_tfar(rn, args->N, i) = t;
         RTCHitN_geomID(hn, args->N, i) = args->geomID;
-        RTCHitN_primID(hn, args->N, i) = 0;
-        RTCHitN_u(hn, args->N, i) = 0;
-        RTCHitN_v(hn, args->N, i) = 0;
+        RTCHitN_primID(hn, args->N, i) = args->primID;
+        RTCHitN_u(hn, args->N, i) = u;
+        RTCHitN_v(hn, args->N, i) = v;
         RTCHitN_Ng_x(hn, args->N, i) = 0;
         RTCHitN_Ng_y(hn, args->N, i) = 0;
         RTCHitN_Ng_z(hn, args->N, i) = 1;
@@ -117,8 +127,8 @@ void UserOccluded(const RTCOccludedFunctionNArguments *args) {
         Ray r;
         r.o = Vec3f(RTCRayN_org_x(rn, args->N, i), RTCRayN_org_y(rn, args->N, i), RTCRayN_org_z(rn, args->N, i));
         r.d = Vec3f(RTCRayN_dir_x(rn, args->N, i), RTCRayN_dir_y(rn, args->N, i), RTCRayN_dir_z(rn, args->N, i));
-        Float t;
-        if (IntersectAnalytic(*d->view, d->shape, r, args->context, RTCRayN_tfar(rn, args->N, i), &t))
+        Float t, u, v;
+        if (IntersectUser(*d->view, d->shape, args->primID, r, args->context, RTCRayN_tfar(rn, args->N, i), &t, &u, &v))
             RTCRayN_tfar(rn, args->N, i) = -Infinity;
     }
 }
@@ -247,7 +257,7 @@ EmbreeScene::EmbreeScene(const SceneView &s) : view_(&s) {
         } else {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
             userData_.push_back(EmbreeUserData{&s, id});
-            rtcSetGeometryUserPrimitiveCount(g, 1);
+            rtcSetGeometryUserPrimitiveCount(g, IsQuadric(shape.kind) ? 1 : shape.primitiveCount);
             rtcSetGeometryUserData(g, &userData_.back());
             rtcSetGeometryBoundsFunction(g, UserBounds, nullptr);
             rtcSetGeometryIntersectFunction(g, UserIntersect);

@@ -1,5 +1,7 @@
-// Lucerna CPU backend: the scene's geometry in Embree 3 (triangles natively; spheres, disks and cylinders as
-// user geometry running the shared intersection routines), and the Tracer the integrator uses.
+// Lucerna CPU backend: the scene's geometry in Embree 3 (triangles natively; spheres, disks, cylinders, curved
+// bilinear patches and curve pieces as
+// user geometry running the shared intersection routines, so that they are hit as pbrt-v4 and the
+// shared BVH hit them; Embree's own curves and grids differ), and the Tracer the integrator uses.
 // Shape alpha cut-outs (geometry/alpha.h): a filter function on the triangle meshes that have
 // one (no filter elsewhere), the user geometries' callbacks test it themselves.
 // Object instances: one RTCScene per prototype, and one user geometry whose primitives are the

@@ -12,7 +12,7 @@ Span<T> DeviceScene::Upload(DeviceBuffer<T> &buf, Span<T> host) {
 
 DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     // Every span of SceneView must be uploaded below; this trips when SceneView changes.
-    static_assert(sizeof(SceneView) == 936, "SceneView changed: upload its new spans in DeviceScene");
+    static_assert(sizeof(SceneView) == 984, "SceneView changed: upload its new spans in DeviceScene");
     view_ = host;   // scalars (camera, film, filter, bounds, table sizes) copy as they are
     view_.positions = Upload(positions_, host.positions);
     view_.normals = Upload(normals_, host.normals);
@@ -22,6 +22,9 @@ DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     view_.spheres = Upload(spheres_, host.spheres);
     view_.disks = Upload(disks_, host.disks);
     view_.cylinders = Upload(cylinders_, host.cylinders);
+    view_.bilinearMeshes = Upload(bilinearMeshes_, host.bilinearMeshes);
+    view_.curveSets = Upload(curveSets_, host.curveSets);
+    view_.curveSegments = Upload(curveSegments_, host.curveSegments);
     view_.shapes = Upload(shapes_, host.shapes);
     view_.prototypes = Upload(prototypes_, host.prototypes);
     view_.instances = Upload(instances_, host.instances);

@@ -28,6 +28,9 @@ class DeviceScene {
     DeviceBuffer<Sphere> spheres_;
     DeviceBuffer<Disk> disks_;
     DeviceBuffer<Cylinder> cylinders_;
+    DeviceBuffer<BilinearMesh> bilinearMeshes_;
+    DeviceBuffer<CurveSet> curveSets_;
+    DeviceBuffer<CurveSegment> curveSegments_;
     DeviceBuffer<Shape> shapes_;
     DeviceBuffer<Prototype> prototypes_;
     DeviceBuffer<Instance> instances_;
