@@ -2,8 +2,8 @@
 // the feature scene (scenes/features/materials-*.pbrt) builds clean and renders finite; a quad
 // under a uniform white environment (radiance = albedo) shows each material's analytic value:
 // mix of equal materials = the material, per pixel; mix by amount a = the blend in the mean;
-// diffusetransmission = R + T (seen from either side); coatedconductor <= 1. Normal maps: a flat
-// map ((0.5, 0.5, 1)) renders bit-identically to none, a tilted one does not.
+// diffusetransmission = R + T (seen from either side); coatedconductor <= 1; lossless hair = 1.
+// Normal maps: a flat map ((0.5, 0.5, 1)) renders bit-identically to none, a tilted one does not.
 #include <gtest/gtest.h>
 
 #include <cmath>
