@@ -2,11 +2,12 @@
 // the feature scene (scenes/features/materials-*.pbrt) builds clean and renders finite; a quad
 // under a uniform white environment (radiance = albedo) shows each material's analytic value:
 // mix of equal materials = the material, per pixel; mix by amount a = the blend in the mean;
-// diffusetransmission = R + T (seen from either side); coatedconductor <= 1. Normal maps: a flat
-// map ((0.5, 0.5, 1)) renders bit-identically to none, a tilted one does not.
+// diffusetransmission = R + T (seen from either side); coatedconductor <= 1; lossless hair = 1.
+// Normal maps: a flat map ((0.5, 0.5, 1)) renders bit-identically to none, a tilted one does not.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 #include "integrators/render_helpers.h"
@@ -16,7 +17,7 @@ namespace {
 
 TEST(MaterialScenes, FeatureScenesBuildCleanAndRenderFinite) {
     std::vector<std::string> files = FeatureSceneFiles({"materials-"});
-    ASSERT_EQ(files.size(), 2u);   // layered-mix, bump
+    ASSERT_EQ(files.size(), 3u);   // layered-mix, bump, hair
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
@@ -85,6 +86,22 @@ TEST(MaterialScenes, CoatedConductorFurnace) {
     double m = MeanOf(r.image);
     EXPECT_GT(m, 0.99);
     EXPECT_LT(m, 1.005);
+}
+
+// Hair in a white furnace: a quad of lossless fibers (sigma_a = 0; h = -1 + 2 v across the quad)
+// under L = 1 scatters all light (the TT lobe through the quad, R and TRT back), so the image is
+// 1 up to pbrt-v4's I0 approximation (HairBxDF's quadrature albedo is within 0.0035 of 1);
+// absorption darkens it.
+TEST(MaterialScenes, HairFurnace) {
+    auto s = LoadSceneText("hairfurnace", QuadScene("", "Material \"hair\" \"rgb sigma_a\" [ 0 0 0 ] \"float beta_m\" 0.3"));
+    RenderResultForTest r = RenderScene(*s, 16, 50, 1);
+    double m = MeanOf(r.image);
+    EXPECT_NEAR(m, 1, 0.01);
+    auto dark = LoadSceneText("hairdark", QuadScene("", "Material \"hair\" \"float eumelanin\" 1.3"));
+    double d = MeanOf(RenderScene(*dark, 16, 50, 1).image);
+    if (getenv("LU_VERBOSE")) printf("hair furnace mean %.5f, eumelanin 1.3 mean %.5f\n", m, d);
+    EXPECT_LT(d, 0.8 * m);
+    EXPECT_GT(d, 0.02);
 }
 
 // A flat and a tilted normal map (EXR, exact values) in a scene's folder; a diffuse quad under a

@@ -78,7 +78,7 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     std::ofstream(dir + "/lights.pbrt") << "# included\nLightSource \"infinite\" \"point3 portal\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ]\n";
     std::ofstream(dir + "/lens.dat") << "0 4 1 14\n50 5 1.5 20\n-50 48 1 20\n";
     std::ofstream(dir + "/many.pbrt") << "Camera \"realistic\" \"string aperture\" \"pentagon\" \"string lensfile\" \"lens.dat\"\nFilm \"rgb\" \"integer xresolution\" [ 8 ] "
-                                         "\"integer yresolution\" [ 8 ]\nWorldBegin\nMaterial \"hair\"\n"
+                                         "\"integer yresolution\" [ 8 ]\nWorldBegin\nMaterial \"subsurface\"\n"
                                          "Shape \"sphere\"\nInclude \"lights.pbrt\"\nShape \"bilinearmesh\" \"point3 P\" "
                                          "[ 0 0 0 1 0 0 0 1 0 1 1 1 ] \"string emissionfilename\" \"e.png\"\n";
     for (const char *command : {"info", "render"}) {
@@ -95,7 +95,7 @@ TEST(InfoCommand, ExitCodesAndOutput) {
         int status = pclose(p);
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << many;
         EXPECT_TRUE(Contains(many, dir + "/many.pbrt:1:20: error: Camera \"realistic\" \"aperture\" \"pentagon\" is not supported")) << many;
-        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:4:1: error: Material type \"hair\" is not supported")) << many;
+        EXPECT_TRUE(Contains(many, dir + "/many.pbrt:4:1: error: Material type \"subsurface\" is not supported")) << many;
         EXPECT_TRUE(Contains(many, dir + "/many.pbrt:7:")) << many;
         EXPECT_TRUE(Contains(many, "error: bilinearmesh \"emissionfilename\" (textured emission) is not supported")) << many;
         EXPECT_TRUE(Contains(many, "In file included from " + dir + "/many.pbrt:6:1:\n" + dir + "/lights.pbrt:2:")) << many;

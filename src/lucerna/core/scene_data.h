@@ -111,8 +111,12 @@ struct SpectrumTexture {
 
 enum class MaterialKind : uint8_t {
     Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface,
-    CoatedConductor, DiffuseTransmission, Mix
+    CoatedConductor, DiffuseTransmission, Mix, Hair
 };
+
+// How a hair material gives its absorption (pbrt-v4's HairMaterial: the first of "sigma_a",
+// "reflectance" (or "color"), "eumelanin"/"pheomelanin" present; none: eumelanin 1.3).
+enum class HairColor : uint8_t { SigmaA, Reflectance, Melanin };
 
 struct Material {
     MaterialKind kind = MaterialKind::Diffuse;
@@ -146,6 +150,14 @@ struct Material {
     // A "texture" eta (dielectric, thindielectric, coated* interface): floatTextures index,
     // evaluated per hit and the same at every wavelength (it overrides `eta`); NoIndex: `eta`.
     uint32_t etaTexture = NoIndex;
+    // hair (pbrt-v4's HairMaterial): the absorption from hairSigmaA, `reflectance` or the melanin
+    // concentrations (hairColor says which); hairEta (default 1.55), betaM and betaN (longitudinal
+    // and azimuthal roughness, default 0.3, used clamped to [0.01, 1]), hairAlpha (the cuticle
+    // scale tilt in degrees, default 2).
+    HairColor hairColor = HairColor::Melanin;
+    SpectrumTexture hairSigmaA;
+    FloatTexture eumelanin, pheomelanin;
+    FloatTexture hairEta, betaM, betaN, hairAlpha;
 };
 
 // ---- Shapes ----

@@ -25,7 +25,7 @@ struct SpecularLobe {
 };
 
 enum class BxDFKind : uint8_t {
-    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission
+    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Hair
 };
 
 struct BSDF {
@@ -39,6 +39,7 @@ struct BSDF {
         CoatedDiffuseBxDF coatedDiffuse;
         CoatedConductorBxDF coatedConductor;
         DiffuseTransmissionBxDF diffuseTransmission;
+        HairBxDF hair;
     };
 
     LU_HD BSDF() : diffuse() {}
@@ -56,6 +57,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Flags();
         case BxDFKind::CoatedConductor: return coatedConductor.Flags();
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Flags();
+        case BxDFKind::Hair: return hair.Flags();
         default: return BxDF_Unset;
         }
     }
@@ -68,6 +70,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.f(wo, wi, mode);
         case BxDFKind::CoatedConductor: return coatedConductor.f(wo, wi, mode);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.f(wo, wi, mode);
+        case BxDFKind::Hair: return hair.f(wo, wi, mode);
         default: return SampledSpectrum(0);
         }
     }
@@ -80,6 +83,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::CoatedConductor: return coatedConductor.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Sample_f(wo, uc, u, mode, sampleFlags, bs);
+        case BxDFKind::Hair: return hair.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         default: return false;
         }
     }
@@ -92,6 +96,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::CoatedConductor: return coatedConductor.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.PDF(wo, wi, mode, sampleFlags);
+        case BxDFKind::Hair: return hair.PDF(wo, wi, mode, sampleFlags);
         default: return 0;
         }
     }
@@ -348,6 +353,33 @@ LU_INLINE Frame BumpMappedFrame(const Frame &f, const FloatTexture &disp, const 
     return Frame::FromXZ(dpdu, ns);
 }
 
+// pbrt-v4's HairMaterial::GetBxDF: the roughnesses clamped to [0.01, 1], the absorption from
+// sigma_a (clamped at 0), from a colour in [0, 1] (SigmaAFromReflectance) or from the melanin
+// concentrations (clamped at 0; their RGB absorption as an unbounded sRGB spectrum), and the
+// fiber offset h = -1 + 2 v from the hit's uv.
+LU_INLINE HairBxDF MakeHairBxDF(const Material &m, const TextureEvalContext &ctx, Vec2f uv,
+                                const SampledWavelengths &lambda, const SceneView &scene) {
+    Float bm = Max(Float(1e-2), Min(Float(1), EvalFloatTexture(m.betaM, ctx, scene)));
+    Float bn = Max(Float(1e-2), Min(Float(1), EvalFloatTexture(m.betaN, ctx, scene)));
+    Float a = EvalFloatTexture(m.hairAlpha, ctx, scene);
+    Float e = EvalFloatTexture(m.hairEta, ctx, scene);
+    SampledSpectrum sig_a;
+    if (m.hairColor == HairColor::SigmaA) {
+        sig_a = ClampZero(EvalSpectrumTexture(m.hairSigmaA, ctx, lambda, scene));
+    } else if (m.hairColor == HairColor::Reflectance) {
+        SampledSpectrum c = ClampSpectrum(EvalSpectrumTexture(m.reflectance, ctx, lambda, scene), 0, 1);
+        sig_a = HairBxDF::SigmaAFromReflectance(c, bn);
+    } else {
+        Float ce = Max(Float(0), EvalFloatTexture(m.eumelanin, ctx, scene));
+        Float cp = Max(Float(0), EvalFloatTexture(m.pheomelanin, ctx, scene));
+        Float rgb[3];
+        HairBxDF::SigmaAFromConcentrationRGB(ce, cp, rgb);
+        sig_a = RGBToSampledSpectrum(rgb, true, lambda, scene, uint32_t(ColorSpaceId::SRGB));
+    }
+    Float h = -1 + 2 * uv.y;
+    return HairBxDF(h, e, sig_a, bm, bn, a);
+}
+
 // Evaluates the textures of material m at si and builds the BSDF in si's shading frame (z =
 // si.ns, x along si.dpdu; with a normal map, NormalMappedFrame of it, else with a displacement
 // texture BumpMappedFrame). Returns false for
@@ -433,6 +465,11 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         SampledSpectrum t = ClampSpectrum(EvalSpectrumTexture(m.transmittance, ctx, lambda, scene) * m.scale, 0, 1);
         bsdf->kind = BxDFKind::DiffuseTransmission;
         bsdf->diffuseTransmission = DiffuseTransmissionBxDF(r, t);
+        return true;
+    }
+    case MaterialKind::Hair: {
+        bsdf->kind = BxDFKind::Hair;
+        bsdf->hair = MakeHairBxDF(m, ctx, si.uv, lambda, scene);
         return true;
     }
     default: return false;

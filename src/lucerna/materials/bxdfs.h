@@ -1,6 +1,6 @@
 // Lucerna: the BxDFs in the local shading frame (z = shading normal), host and device:
 // diffuse, diffuse transmission, conductor, dielectric, thin dielectric, and the stochastic
-// layered model over a diffuse or a conductor base (coated diffuse, coated conductor).
+// layered model over a diffuse or a conductor base (coated diffuse, coated conductor), and hair.
 // Follows pbrt-v4's bxdfs.h / bxdfs.cpp: same lobes, sampling, pdfs, flags and edge cases.
 #pragma once
 
@@ -689,6 +689,264 @@ struct LayeredBxDF {
         }
         // Mix with a uniform pdf so that every direction keeps some density.
         return Lerp(0.9f, 1 / (4 * Pi), pdfSum / nSamples);
+    }
+};
+
+// ---- Hair (pbrt-v4's HairBxDF: d'Eon et al. 2011's longitudinal lobes, Chiang et al. 2016's
+// azimuthal lobes and sampling) ----
+// The local frame is pbrt-v4's: x along the fiber (the shading dpdu), y and z span the normal
+// plane, so that theta = asin(w.x) is the angle to the normal plane and phi = atan2(w.z, w.y)
+// the azimuth around the fiber. h in [-1, 1] is where the ray met the fiber's width (pbrt-v4's
+// -1 + 2 v). Scattering is the sum of the R, TT and TRT lobes (p = 0, 1, 2) and a residual
+// term for every longer path (p = pMax), each M_p(theta) A_p N_p(phi). f includes pbrt-v4's
+// division by |cos theta| of wi against the shading normal, so that f |cos| is the scattering
+// function. The model is energy conserving for sigma_a = 0 but not reciprocal (A_p, the scale
+// tilts and gamma_t follow wo only), as in pbrt-v4.
+
+// The modified Bessel function of the first kind, order 0 (10 terms of its series), and its log
+// with the large-argument asymptote above 12 (pbrt-v4's I0 / LogI0).
+LU_INLINE Float HairI0(Float x) {
+    Float val = 0, x2i = 1;
+    int64_t ifact = 1;
+    int i4 = 1;
+    for (int i = 0; i < 10; ++i) {
+        if (i > 1) ifact *= i;
+        val += x2i / (Float(i4) * Sqr(Float(ifact)));
+        x2i *= x * x;
+        i4 *= 4;
+    }
+    return val;
+}
+LU_INLINE Float HairLogI0(Float x) {
+    if (x > 12) return x + 0.5f * (-std::log(2 * Pi) + std::log(1 / x) + 1 / (8 * x));
+    return std::log(HairI0(x));
+}
+// x^n by squaring (pbrt-v4's Pow<n>).
+LU_INLINE Float HairPow(Float x, int n) {
+    Float r = 1;
+    while (n > 0) {
+        if (n & 1) r *= x;
+        x *= x;
+        n >>= 1;
+    }
+    return r;
+}
+
+// The longitudinal scattering function M_p; for small variances (v <= 0.1) in log form, where
+// I0 and sinh overflow.
+LU_INLINE Float HairMp(Float cosTheta_i, Float cosTheta_o, Float sinTheta_i, Float sinTheta_o, Float v) {
+    Float a = cosTheta_i * cosTheta_o / v, b = sinTheta_i * sinTheta_o / v;
+    if (v <= .1f) return std::exp(HairLogI0(a) - b - 1 / v + 0.6931f + std::log(1 / (2 * v)));
+    return std::exp(-b) * HairI0(a) / (std::sinh(1 / v) * 2 * v);
+}
+
+// The logistic distribution of scale s, trimmed to [a, b], its CDF and its inverse CDF.
+LU_INLINE Float HairLogistic(Float x, Float s) {
+    x = std::abs(x);
+    Float e = std::exp(-x / s);
+    return e / (s * Sqr(1 + e));
+}
+LU_INLINE Float HairLogisticCDF(Float x, Float s) { return 1 / (1 + std::exp(-x / s)); }
+LU_INLINE Float HairTrimmedLogistic(Float x, Float s, Float a, Float b) {
+    return HairLogistic(x, s) / (HairLogisticCDF(b, s) - HairLogisticCDF(a, s));
+}
+LU_INLINE Float SampleHairTrimmedLogistic(Float u, Float s, Float a, Float b) {
+    Float k = HairLogisticCDF(b, s) - HairLogisticCDF(a, s);
+    Float x = -s * std::log(1 / (u * k + HairLogisticCDF(a, s)) - 1);
+    return Clamp(x, a, b);
+}
+
+struct HairBxDF {
+    static constexpr int pMax = 3;
+    Float h = 0, eta = 1.55f;
+    SampledSpectrum sigma_a;
+    Float beta_m = 0.3f, beta_n = 0.3f;
+    Float v[pMax + 1] = {};                    // longitudinal variances per lobe
+    Float s = 0;                               // azimuthal logistic scale
+    Float sin2kAlpha[pMax] = {}, cos2kAlpha[pMax] = {};   // sin, cos of 2^k alpha (scale tilts)
+
+    HairBxDF() = default;
+    // alpha in degrees; beta_m, beta_n in (0, 1] (the material clamps them to [0.01, 1]).
+    LU_HD HairBxDF(Float h, Float eta, const SampledSpectrum &sigma_a, Float beta_m, Float beta_n, Float alpha)
+        : h(h), eta(eta), sigma_a(sigma_a), beta_m(beta_m), beta_n(beta_n) {
+        // d'Eon et al.'s fit of the variance to the roughness; TT is narrower, TRT wider.
+        v[0] = Sqr(0.726f * beta_m + 0.812f * Sqr(beta_m) + 3.7f * HairPow(beta_m, 20));
+        v[1] = .25f * v[0];
+        v[2] = 4 * v[0];
+        for (int p = 3; p <= pMax; ++p) v[p] = v[2];
+        constexpr Float SqrtPiOver8 = 0.626657069f;
+        s = SqrtPiOver8 * (0.265f * beta_n + 1.194f * Sqr(beta_n) + 5.372f * HairPow(beta_n, 22));
+        sin2kAlpha[0] = std::sin(Radians(alpha));
+        cos2kAlpha[0] = SafeSqrt(1 - Sqr(sin2kAlpha[0]));
+        for (int i = 1; i < pMax; ++i) {
+            sin2kAlpha[i] = 2 * cos2kAlpha[i - 1] * sin2kAlpha[i - 1];
+            cos2kAlpha[i] = Sqr(cos2kAlpha[i - 1]) - Sqr(sin2kAlpha[i - 1]);
+        }
+    }
+
+    // pbrt-v4 flags hair as glossy reflection although its lobes cover the whole sphere.
+    LU_HD uint8_t Flags() const { return BxDF_GlossyReflection; }
+
+    // The azimuth of lobe p's exit direction and the azimuthal scattering function N_p.
+    LU_HD static Float Phi(int p, Float gamma_o, Float gamma_t) { return 2 * p * gamma_t - 2 * gamma_o + p * Pi; }
+    LU_HD static Float Np(Float phi, int p, Float s, Float gamma_o, Float gamma_t) {
+        Float dphi = phi - Phi(p, gamma_o, gamma_t);
+        while (dphi > Pi) dphi -= 2 * Pi;   // remap to [-pi, pi]
+        while (dphi < -Pi) dphi += 2 * Pi;
+        return HairTrimmedLogistic(dphi, s, -Pi, Pi);
+    }
+
+    // The attenuations A_p: Fresnel reflection at the first hit (R), transmission through the
+    // fiber with single-pass transmittance T (TT, TRT), and the geometric series of the rest.
+    LU_HD static void Ap(Float cosTheta_o, Float eta, Float h, const SampledSpectrum &T, SampledSpectrum ap[pMax + 1]) {
+        Float cosGamma_o = SafeSqrt(1 - Sqr(h));
+        Float cosTheta = cosTheta_o * cosGamma_o;
+        Float f = FrDielectric(cosTheta, eta);
+        ap[0] = SampledSpectrum(f);
+        ap[1] = T * Sqr(1 - f);
+        for (int p = 2; p < pMax; ++p) ap[p] = ap[p - 1] * T * f;
+        SampledSpectrum rest = SampledSpectrum(1) - T * f;   // > 0: f < 1 and T <= 1
+        ap[pMax] = SafeDiv(ap[pMax - 1] * T * f, rest);
+    }
+
+    // sin and cos of theta_o tilted by the cuticle scales for lobe p (R by 2 alpha, TT by
+    // -alpha, TRT by -4 alpha); |cos| handles tilts past the pole.
+    LU_HD void TiltedThetaO(int p, Float sinTheta_o, Float cosTheta_o, Float *sinThetap_o, Float *cosThetap_o) const {
+        if (p == 0) {
+            *sinThetap_o = sinTheta_o * cos2kAlpha[1] - cosTheta_o * sin2kAlpha[1];
+            *cosThetap_o = cosTheta_o * cos2kAlpha[1] + sinTheta_o * sin2kAlpha[1];
+        } else if (p == 1) {
+            *sinThetap_o = sinTheta_o * cos2kAlpha[0] + cosTheta_o * sin2kAlpha[0];
+            *cosThetap_o = cosTheta_o * cos2kAlpha[0] - sinTheta_o * sin2kAlpha[0];
+        } else if (p == 2) {
+            *sinThetap_o = sinTheta_o * cos2kAlpha[2] + cosTheta_o * sin2kAlpha[2];
+            *cosThetap_o = cosTheta_o * cos2kAlpha[2] - sinTheta_o * sin2kAlpha[2];
+        } else {
+            *sinThetap_o = sinTheta_o;
+            *cosThetap_o = cosTheta_o;
+        }
+        *cosThetap_o = std::abs(*cosThetap_o);
+    }
+
+    // The single-pass transmittance through the fiber for wo's theta (sin, cos) and gamma_t.
+    LU_HD SampledSpectrum Transmittance(Float sinTheta_o, Float cosTheta_o, Float *gamma_t) const {
+        Float sinTheta_t = sinTheta_o / eta;
+        Float cosTheta_t = SafeSqrt(1 - Sqr(sinTheta_t));
+        // The refraction in the normal plane sees the modified index eta' (Bravais).
+        Float etap = SafeSqrt(Sqr(eta) - Sqr(sinTheta_o)) / cosTheta_o;
+        Float sinGamma_t = h / etap;
+        Float cosGamma_t = SafeSqrt(1 - Sqr(sinGamma_t));
+        *gamma_t = SafeASin(sinGamma_t);
+        return Exp(sigma_a * (-2 * cosGamma_t / cosTheta_t));
+    }
+
+    LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi, TransportMode) const {
+        Float sinTheta_o = wo.x, cosTheta_o = SafeSqrt(1 - Sqr(sinTheta_o));
+        Float phi_o = std::atan2(wo.z, wo.y), gamma_o = SafeASin(h);
+        Float sinTheta_i = wi.x, cosTheta_i = SafeSqrt(1 - Sqr(sinTheta_i));
+        Float phi_i = std::atan2(wi.z, wi.y);
+        Float gamma_t;
+        SampledSpectrum T = Transmittance(sinTheta_o, cosTheta_o, &gamma_t);
+        Float phi = phi_i - phi_o;
+        SampledSpectrum ap[pMax + 1];
+        Ap(cosTheta_o, eta, h, T, ap);
+        SampledSpectrum fsum(0);
+        for (int p = 0; p < pMax; ++p) {
+            Float sinThetap_o, cosThetap_o;
+            TiltedThetaO(p, sinTheta_o, cosTheta_o, &sinThetap_o, &cosThetap_o);
+            fsum += ap[p] * (HairMp(cosTheta_i, cosThetap_o, sinTheta_i, sinThetap_o, v[p]) *
+                             Np(phi, p, s, gamma_o, gamma_t));
+        }
+        fsum += ap[pMax] * (HairMp(cosTheta_i, cosTheta_o, sinTheta_i, sinTheta_o, v[pMax]) * Inv2Pi);
+        if (AbsCosTheta(wi) > 0) fsum /= AbsCosTheta(wi);
+        return fsum;
+    }
+
+    // Lobe probabilities proportional to the A_p's average over the wavelengths.
+    LU_HD void ApPDF(Float cosTheta_o, Float apPDF[pMax + 1]) const {
+        Float sinTheta_o = SafeSqrt(1 - Sqr(cosTheta_o)), gamma_t;
+        SampledSpectrum T = Transmittance(sinTheta_o, cosTheta_o, &gamma_t);
+        SampledSpectrum ap[pMax + 1];
+        Ap(cosTheta_o, eta, h, T, ap);
+        Float sumY = 0;
+        for (int i = 0; i <= pMax; ++i) sumY += ap[i].Average();
+        for (int i = 0; i <= pMax; ++i) apPDF[i] = ap[i].Average() / sumY;
+    }
+
+    // The density of Sample_f: the lobes' M_p N_p weighted by ApPDF (dphi = phi_i - phi_o).
+    LU_HD Float PDFFromAngles(Float sinTheta_o, Float cosTheta_o, Float sinTheta_i, Float cosTheta_i, Float dphi,
+                              Float gamma_o, Float gamma_t, const Float apPDF[pMax + 1]) const {
+        Float pdf = 0;
+        for (int p = 0; p < pMax; ++p) {
+            Float sinThetap_o, cosThetap_o;
+            TiltedThetaO(p, sinTheta_o, cosTheta_o, &sinThetap_o, &cosThetap_o);
+            pdf += HairMp(cosTheta_i, cosThetap_o, sinTheta_i, sinThetap_o, v[p]) * apPDF[p] *
+                   Np(dphi, p, s, gamma_o, gamma_t);
+        }
+        pdf += HairMp(cosTheta_i, cosTheta_o, sinTheta_i, sinTheta_o, v[pMax]) * apPDF[pMax] * Inv2Pi;
+        return pdf;
+    }
+
+    // pbrt-v4's sampling: a lobe p by ApPDF (uc, then remapped for the azimuth), theta_i by
+    // inverting M_p around the (tilted) mirror direction (u), dphi by the trimmed logistic
+    // around Phi(p) (uniform for the residual). sampleFlags are ignored, as in pbrt-v4.
+    LU_HD bool Sample_f(Vec3f wo, Float uc, Vec2f u, TransportMode mode, uint8_t, BSDFSample *bs) const {
+        Float sinTheta_o = wo.x, cosTheta_o = SafeSqrt(1 - Sqr(sinTheta_o));
+        Float phi_o = std::atan2(wo.z, wo.y), gamma_o = SafeASin(h);
+        Float apPDF[pMax + 1];
+        ApPDF(cosTheta_o, apPDF);
+        // pbrt-v4's SampleDiscrete with the remapped uc.
+        int p = 0;
+        {
+            Float up = uc, sum = 0;
+            if (up >= 1) up = OneMinusEpsilon;
+            while (p < pMax && sum + apPDF[p] <= up) sum += apPDF[p++];
+            uc = apPDF[p] > 0 ? Min((up - sum) / apPDF[p], OneMinusEpsilon) : 0;
+        }
+        Float sinThetap_o, cosThetap_o;
+        TiltedThetaO(p, sinTheta_o, cosTheta_o, &sinThetap_o, &cosThetap_o);
+        Float cosTheta = 1 + v[p] * std::log(Max(u[0], Float(1e-5)) + (1 - u[0]) * std::exp(-2 / v[p]));
+        Float sinTheta = SafeSqrt(1 - Sqr(cosTheta));
+        Float cosPhi = std::cos(2 * Pi * u[1]);
+        Float sinTheta_i = -cosTheta * sinThetap_o + sinTheta * cosPhi * cosThetap_o;
+        Float cosTheta_i = SafeSqrt(1 - Sqr(sinTheta_i));
+        Float gamma_t;
+        Transmittance(sinTheta_o, cosTheta_o, &gamma_t);
+        Float dphi = p < pMax ? Phi(p, gamma_o, gamma_t) + SampleHairTrimmedLogistic(uc, s, -Pi, Pi) : 2 * Pi * uc;
+        Float phi_i = phi_o + dphi;
+        Vec3f wi(sinTheta_i, cosTheta_i * std::cos(phi_i), cosTheta_i * std::sin(phi_i));
+        Float pdf = PDFFromAngles(sinTheta_o, cosTheta_o, sinTheta_i, cosTheta_i, dphi, gamma_o, gamma_t, apPDF);
+        *bs = MakeBSDFSample(f(wo, wi, mode), wi, pdf, Flags());
+        return true;
+    }
+
+    LU_HD Float PDF(Vec3f wo, Vec3f wi, TransportMode, uint8_t) const {
+        Float sinTheta_o = wo.x, cosTheta_o = SafeSqrt(1 - Sqr(sinTheta_o));
+        Float phi_o = std::atan2(wo.z, wo.y), gamma_o = SafeASin(h);
+        Float sinTheta_i = wi.x, cosTheta_i = SafeSqrt(1 - Sqr(sinTheta_i));
+        Float phi_i = std::atan2(wi.z, wi.y);
+        Float gamma_t;
+        Transmittance(sinTheta_o, cosTheta_o, &gamma_t);
+        Float apPDF[pMax + 1];
+        ApPDF(cosTheta_o, apPDF);
+        return PDFFromAngles(sinTheta_o, cosTheta_o, sinTheta_i, cosTheta_i, phi_i - phi_o, gamma_o, gamma_t, apPDF);
+    }
+
+    // Absorption from a hair colour (Chiang et al.'s fit of the multiple-scattering albedo for
+    // azimuthal roughness beta_n).
+    LU_HD static SampledSpectrum SigmaAFromReflectance(const SampledSpectrum &c, Float beta_n) {
+        Float d = 5.969f - 0.215f * beta_n + 2.532f * Sqr(beta_n) - 10.73f * HairPow(beta_n, 3) +
+                  5.574f * HairPow(beta_n, 4) + 0.245f * HairPow(beta_n, 5);
+        SampledSpectrum sigma_a;
+        for (int i = 0; i < NSpectrumSamples; ++i) sigma_a[i] = Sqr(std::log(c[i]) / d);
+        return sigma_a;
+    }
+    // The RGB absorption of melanin concentrations (eumelanin ce, pheomelanin cp); pbrt-v4 turns
+    // it into an RGBUnboundedSpectrum in sRGB.
+    LU_HD static void SigmaAFromConcentrationRGB(Float ce, Float cp, Float rgb[3]) {
+        const Float eumelaninSigma_a[3] = {0.419f, 0.697f, 1.37f};
+        const Float pheomelaninSigma_a[3] = {0.187f, 0.4f, 1.05f};
+        for (int c = 0; c < 3; ++c) rgb[c] = ce * eumelaninSigma_a[c] + cp * pheomelaninSigma_a[c];
     }
 };
 

@@ -78,7 +78,7 @@ uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap) 
 namespace {
 
 bool IsUnsupportedMaterialType(const std::string &t) {
-    static const char *names[] = {"measured", "hair", "subsurface"};
+    static const char *names[] = {"measured", "subsurface"};
     for (const char *n : names)
         if (t == n) return true;
     return false;
@@ -132,6 +132,48 @@ void ReadConductorIndex(BuildContext &ctx, const ParameterDictionary &p, Materia
 }
 
 uint32_t CreateNamedMaterial(BuildContext &ctx, const std::string &name, const SceneEntity &e);
+
+// pbrt-v4's HairMaterial::Create: the absorption from the first of "sigma_a", "reflectance" (or
+// "color"), "eumelanin"/"pheomelanin" given (the others are warned about and ignored, as pbrt-v4
+// does); none of them: eumelanin 1.3. A missing one of the two melanins is 0.
+void ReadHair(BuildContext &ctx, const ParameterDictionary &p, Material &m, const FileLoc &loc, const std::string &owner) {
+    std::optional<SpectrumTexture> sigmaA = GetSpectrumTextureOrNull(ctx, p, "sigma_a", SpectrumType::Unbounded);
+    std::optional<SpectrumTexture> refl = GetSpectrumTextureOrNull(ctx, p, "reflectance", SpectrumType::Albedo);
+    const char *reflName = "reflectance";
+    if (!refl) {
+        refl = GetSpectrumTextureOrNull(ctx, p, "color", SpectrumType::Albedo);
+        reflName = "color";
+    }
+    std::optional<FloatTexture> eu = GetFloatTextureOrNull(ctx, p, "eumelanin");
+    std::optional<FloatTexture> pheo = GetFloatTextureOrNull(ctx, p, "pheomelanin");
+    auto ignore = [&](bool given, const std::string &name, const std::string &winner) {
+        if (given)
+            ctx.diag.Warning(ParamLoc(p, name, loc), owner + ": ignoring " + Quoted(name) + " since " + Quoted(winner) +
+                                                         " was provided");
+    };
+    if (sigmaA) {
+        m.hairColor = HairColor::SigmaA;
+        m.hairSigmaA = *sigmaA;
+        ignore(bool(refl), reflName, "sigma_a");
+        ignore(bool(eu), "eumelanin", "sigma_a");
+        ignore(bool(pheo), "pheomelanin", "sigma_a");
+    } else if (refl) {
+        m.hairColor = HairColor::Reflectance;
+        m.reflectance = *refl;
+        ignore(bool(eu), "eumelanin", reflName);
+        ignore(bool(pheo), "pheomelanin", reflName);
+    } else {
+        // pbrt-v4's default is the constant sigma_a of eumelanin 1.3, pheomelanin 0: the same.
+        m.hairColor = HairColor::Melanin;
+        bool none = !eu && !pheo;
+        m.eumelanin = eu ? *eu : GetFloatTexture(ctx, p, "eumelanin", none ? 1.3f : 0.f);
+        m.pheomelanin = pheo ? *pheo : GetFloatTexture(ctx, p, "pheomelanin", 0.f);
+    }
+    m.hairEta = GetFloatTexture(ctx, p, "eta", 1.55f);
+    m.betaM = GetFloatTexture(ctx, p, "beta_m", 0.3f);
+    m.betaN = GetFloatTexture(ctx, p, "beta_n", 0.3f);
+    m.hairAlpha = GetFloatTexture(ctx, p, "alpha", 2.f);
+}
 
 // A mix's child: a named material, built now if it is not yet (MakeNamedMaterial order does
 // not matter); not "interface" (pbrt-v4 refuses it), not the mix itself.
@@ -213,12 +255,15 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
         m.nSamples = p.GetOneInt("nsamples", 1);
         m.g = GetFloatTexture(ctx, p, "g", 0);
         m.albedo = GetSpectrumTexture(ctx, p, "albedo", SpectrumType::Albedo, Spectrum::Const(0));
+    } else if (type == "hair") {
+        m.kind = MaterialKind::Hair;
+        ReadHair(ctx, p, m, loc, owner);
     } else {
         Fail(loc, "unknown material type " + Quoted(type));
     }
-    // pbrt-v4 reads "displacement" and "normalmap" for every material and the mix ignores them:
-    // here they are reported unused.
-    if (m.kind != MaterialKind::Mix) {
+    // pbrt-v4 reads "displacement" and "normalmap" for every material and the mix and hair
+    // ignore them: here they are reported unused.
+    if (m.kind != MaterialKind::Mix && m.kind != MaterialKind::Hair) {
         if (p.Has("displacement")) m.displacement = GetFloatTextureNode(ctx, p, "displacement", 0);
         std::string normalMap = p.GetOneString("normalmap", "");
         if (!normalMap.empty()) {

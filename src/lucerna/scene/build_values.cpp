@@ -79,6 +79,14 @@ void CheckScale(const SpectrumTexture &t, const ParameterDictionary &p, const ch
                                          FormatNumber(t.scale) + ")");
 }
 
+// Fails at the parameter when a known value of t is <= 0.
+void CheckPositive(const FloatTexture &t, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
+                   const char *name, const FileLoc &loc, const std::string &owner, const std::string &rule) {
+    Float vLo, vHi;
+    if (!KnownRange(t, nodes, &vLo, &vHi) || vLo > 0) return;
+    Fail(ParamLoc(p, name, loc), owner + ": " + Quoted(name) + " " + rule + " (got " + FormatNumber(vLo) + ")");
+}
+
 }  // namespace
 
 void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nodes, const ParameterDictionary &p,
@@ -118,6 +126,18 @@ void CheckMaterialValues(const Material &m, const std::vector<FloatTexture> &nod
         CheckRange(m.g, nodes, -1, 1, p, {"g"}, loc, owner, "must be in [-1, 1]");
         if (m.nSamples < 1) Fail(ParamLoc(p, "nsamples", loc), owner + ": \"nsamples\" must be at least 1 (got " + std::to_string(m.nSamples) + ")");
         if (m.maxDepth < 0) Fail(ParamLoc(p, "maxdepth", loc), owner + ": \"maxdepth\" must not be negative (got " + std::to_string(m.maxDepth) + ")");
+    }
+    if (m.kind == MaterialKind::Hair) {
+        // pbrt-v4 clamps the roughnesses to [0.01, 1] silently; a value outside (0, 1] is a
+        // mistake (the fits for v and s are made for (0, 1]), an index <= 0 has no refraction.
+        CheckRange(m.betaM, nodes, 0, 1, p, {"beta_m"}, loc, owner, "must be in (0, 1]");
+        CheckRange(m.betaN, nodes, 0, 1, p, {"beta_n"}, loc, owner, "must be in (0, 1]");
+        CheckPositive(m.betaM, nodes, p, "beta_m", loc, owner, "must be in (0, 1]");
+        CheckPositive(m.betaN, nodes, p, "beta_n", loc, owner, "must be in (0, 1]");
+        CheckPositive(m.hairEta, nodes, p, "eta", loc, owner, "(index of refraction) must be positive");
+        CheckRange(m.eumelanin, nodes, 0, Infinity, p, {"eumelanin"}, loc, owner, "must not be negative");
+        CheckRange(m.pheomelanin, nodes, 0, Infinity, p, {"pheomelanin"}, loc, owner, "must not be negative");
+        CheckScale(m.hairSigmaA, p, "sigma_a", loc, owner);
     }
     if (m.kind == MaterialKind::DiffuseTransmission && !std::isfinite(m.scale))
         Fail(ParamLoc(p, "scale", loc), owner + ": \"scale\" must be finite (got " + FormatNumber(m.scale) + ")");
