@@ -1,4 +1,4 @@
-// pbrt-v4's mix, diffusetransmission and coatedconductor materials through the whole renderer:
+// pbrt-v4's mix, diffusetransmission, coatedconductor and measured materials through the whole renderer:
 // the feature scene (scenes/features/materials-*.pbrt) builds clean and renders finite; a quad
 // under a uniform white environment (radiance = albedo) shows each material's analytic value:
 // mix of equal materials = the material, per pixel; mix by amount a = the blend in the mean;
@@ -16,7 +16,7 @@ namespace {
 
 TEST(MaterialScenes, FeatureScenesBuildCleanAndRenderFinite) {
     std::vector<std::string> files = FeatureSceneFiles({"materials-"});
-    ASSERT_EQ(files.size(), 2u);   // layered-mix, bump
+    ASSERT_EQ(files.size(), 3u);   // bump, layered-mix, measured
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
@@ -85,6 +85,22 @@ TEST(MaterialScenes, CoatedConductorFurnace) {
     double m = MeanOf(r.image);
     EXPECT_GT(m, 0.99);
     EXPECT_LT(m, 1.005);
+}
+
+// The measured material of the feature scene's file against the analytic conductor it tabulates
+// (tests/materials/measured_gen.h), on the quad under L = 1: each pixel is the directional
+// albedo towards the camera. The means agree within 2% (the file's tabulation) plus noise.
+TEST(MaterialScenes, MeasuredQuadMatchesItsAnalyticConductor) {
+    std::string file = std::string(LUCERNA_SOURCE_DIR) + "/scenes/features/measured-tr-conductor.bsdf";
+    auto measured = LoadSceneText("measured_quad", QuadScene("", "Material \"measured\" \"string filename\" \"" + file + "\""));
+    auto analytic = LoadSceneText("measured_quad_ref", QuadScene("", "Material \"conductor\" \"float roughness\" 0.09 "
+        "\"spectrum eta\" [ 360 1.4  400 1.4  750 0.2  830 0.2 ] \"spectrum k\" [ 360 1.9  400 1.9  750 3.6  830 3.6 ]"));
+    RenderResultForTest rm = RenderScene(*measured, 16, 5, 3), ra = RenderScene(*analytic, 16, 5, 4);
+    for (int c = 0; c < 3; ++c) {
+        MeanSE m = RegionMean(rm.image, c, 0, 0, 16, 16), a = RegionMean(ra.image, c, 0, 0, 16, 16);
+        EXPECT_NEAR(m.mean, a.mean, 0.02 * a.mean + 4.5 * (m.se + a.se)) << "channel " << c;
+        EXPECT_GT(a.mean, 0.2);
+    }
 }
 
 // A flat and a tilted normal map (EXR, exact values) in a scene's folder; a diffuse quad under a

@@ -7,6 +7,7 @@
 #include "lucerna/core/scene_data.h"
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/materials/bxdfs.h"
+#include "lucerna/materials/measured.h"
 #include "lucerna/materials/texture.h"
 
 namespace lu {
@@ -25,7 +26,7 @@ struct SpecularLobe {
 };
 
 enum class BxDFKind : uint8_t {
-    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission
+    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Measured
 };
 
 struct BSDF {
@@ -39,6 +40,7 @@ struct BSDF {
         CoatedDiffuseBxDF coatedDiffuse;
         CoatedConductorBxDF coatedConductor;
         DiffuseTransmissionBxDF diffuseTransmission;
+        MeasuredBxDF measured;
     };
 
     LU_HD BSDF() : diffuse() {}
@@ -56,6 +58,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Flags();
         case BxDFKind::CoatedConductor: return coatedConductor.Flags();
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Flags();
+        case BxDFKind::Measured: return measured.Flags();
         default: return BxDF_Unset;
         }
     }
@@ -68,6 +71,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.f(wo, wi, mode);
         case BxDFKind::CoatedConductor: return coatedConductor.f(wo, wi, mode);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.f(wo, wi, mode);
+        case BxDFKind::Measured: return measured.f(wo, wi, mode);
         default: return SampledSpectrum(0);
         }
     }
@@ -80,6 +84,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::CoatedConductor: return coatedConductor.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Sample_f(wo, uc, u, mode, sampleFlags, bs);
+        case BxDFKind::Measured: return measured.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         default: return false;
         }
     }
@@ -92,6 +97,7 @@ struct BSDF {
         case BxDFKind::CoatedDiffuse: return coatedDiffuse.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::CoatedConductor: return coatedConductor.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.PDF(wo, wi, mode, sampleFlags);
+        case BxDFKind::Measured: return measured.PDF(wo, wi, mode, sampleFlags);
         default: return 0;
         }
     }
@@ -435,6 +441,11 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         bsdf->diffuseTransmission = DiffuseTransmissionBxDF(r, t);
         return true;
     }
+    case MaterialKind::Measured:
+        // The tables stay in the scene: the BxDF points at the material's layout and the data.
+        bsdf->kind = BxDFKind::Measured;
+        bsdf->measured = MeasuredBxDF(&m.measured, scene.measuredData.ptr, lambda);
+        return true;
     default: return false;
     }
 }
