@@ -25,6 +25,8 @@ struct MeasuredGenOptions {
     int vndfRes = 48;                      // vndf vertices per side
     int sampleRes = 32;                    // luminance and spectra vertices per side
     int nThetaI = 10;                      // theta_i slices, uniform in [0, thetaIMax]
+    int nPhiI = 1;                         // 1: isotropic (wm's phi relative to wo's); > 2: phi_i
+                                           // slices uniform in [-pi, pi], wm's phi absolute
     Float thetaIMaxDeg = 88;               // the last slice (90 degrees: G2 / G1 is 0 / 0)
     std::vector<float> wavelengths = {400, 450, 500, 550, 600, 650, 700, 750};
 };
@@ -114,10 +116,17 @@ inline std::vector<uint8_t> GenerateMeasuredFile(const MeasuredGenOptions &o = {
                        ", eta 1.4..0.2, k 1.9..3.6 over 400..750 nm (tests/materials/measured_gen.h)";
     fields.push_back({"description", TensorType::UInt8, {desc.size()}, std::vector<uint8_t>(desc.begin(), desc.end())});
     fields.push_back({"jacobian", TensorType::UInt8, {1}, {1}});
-    std::vector<float> thetaI(o.nThetaI), phiI = {0};
+    std::vector<float> thetaI(o.nThetaI), phiI(o.nPhiI, 0.f);
     for (int j = 0; j < o.nThetaI; ++j) thetaI[j] = float(Radians(o.thetaIMaxDeg) * j / (o.nThetaI - 1));
+    for (int p = 0; o.nPhiI > 1 && p < o.nPhiI; ++p) phiI[p] = float(MeasuredU2phi(Float(p) / (o.nPhiI - 1)));
+    const uint64_t np = uint64_t(o.nPhiI);
+    const bool isotropic = o.nPhiI <= 2;
+    // wo of slice (p, j); wm's phi is relative to it for isotropic data.
+    auto woOf = [&](int p, int j) {
+        return SphericalDirection(std::sin(thetaI[j]), std::cos(thetaI[j]), isotropic ? 0 : phiI[p]);
+    };
     fields.push_back(FloatField("theta_i", {thetaI.size()}, thetaI));
-    fields.push_back(FloatField("phi_i", {1}, phiI));
+    fields.push_back(FloatField("phi_i", {np}, phiI));
     fields.push_back(FloatField("wavelengths", {o.wavelengths.size()}, o.wavelengths));
 
     // ndf and sigma over (x: theta2u, y: phi2u); isotropic, so the rows are equal.
@@ -135,8 +144,9 @@ inline std::vector<uint8_t> GenerateMeasuredFile(const MeasuredGenOptions &o = {
     // density over the unit square.
     const int nv = o.vndfRes, ns = o.sampleRes, nl = int(o.wavelengths.size());
     std::vector<float> vndf;
+    for (int p = 0; p < o.nPhiI; ++p)
     for (int j = 0; j < o.nThetaI; ++j) {
-        Vec3f wo(std::sin(thetaI[j]), 0, std::cos(thetaI[j]));
+        Vec3f wo = woOf(p, j);
         for (int y = 0; y < nv; ++y)
             for (int x = 0; x < nv; ++x) {
                 Float ux = Float(x) / (nv - 1), uy = Float(y) / (nv - 1);
@@ -146,17 +156,19 @@ inline std::vector<uint8_t> GenerateMeasuredFile(const MeasuredGenOptions &o = {
                 vndf.push_back(float(v * 2 * Pi * Pi * ux * std::sin(thetaM)));
             }
     }
-    fields.push_back(FloatField("vndf", {1, uint64_t(o.nThetaI), uint64_t(nv), uint64_t(nv)}, vndf));
+    fields.push_back(FloatField("vndf", {np, uint64_t(o.nThetaI), uint64_t(nv), uint64_t(nv)}, vndf));
 
     // The reflectance at the vertices of the sample space, through the vndf warp just built.
     std::vector<Float> warpData;
-    uint32_t res2[2] = {1, uint32_t(o.nThetaI)};
+    uint32_t res2[2] = {uint32_t(np), uint32_t(o.nThetaI)};
     const float *vals2[2] = {phiI.data(), thetaI.data()};
     PiecewiseLinear2DTable warp = AddPiecewiseLinear2D(warpData, vndf.data(), nv, nv, 2, res2, vals2, true);
-    std::vector<float> spectra(size_t(o.nThetaI) * nl * ns * ns), luminance(size_t(o.nThetaI) * ns * ns);
+    std::vector<float> spectra(np * o.nThetaI * nl * ns * ns), luminance(np * o.nThetaI * ns * ns);
+    for (int p = 0; p < o.nPhiI; ++p)
     for (int j = 0; j < o.nThetaI; ++j) {
-        Vec3f wo(std::sin(thetaI[j]), 0, std::cos(thetaI[j]));
-        Float params[2] = {0, thetaI[j]};
+        Vec3f wo = woOf(p, j);
+        Float params[2] = {phiI[p], thetaI[j]};
+        size_t slice = size_t(p) * o.nThetaI + j;
         double lambdaO = GenLambda(alpha, wo.z);
         for (int y = 0; y < ns; ++y)
             for (int x = 0; x < ns; ++x) {
@@ -170,15 +182,15 @@ inline std::vector<uint8_t> GenerateMeasuredFile(const MeasuredGenOptions &o = {
                     Float lam = o.wavelengths[l];
                     Float F = FrComplex(std::abs(Dot(wo, wm)), SampledSpectrum(GenEta(lam)), SampledSpectrum(GenK(lam)))[0];
                     float r = float(F * g2OverG1);
-                    spectra[((size_t(j) * nl + l) * ns + y) * ns + x] = r;
+                    spectra[((slice * nl + l) * ns + y) * ns + x] = r;
                     lum += r * GenCIEY(lam);
                     ySum += GenCIEY(lam);
                 }
-                luminance[(size_t(j) * ns + y) * ns + x] = float(lum / ySum);
+                luminance[(slice * ns + y) * ns + x] = float(lum / ySum);
             }
     }
-    fields.push_back(FloatField("luminance", {1, uint64_t(o.nThetaI), uint64_t(ns), uint64_t(ns)}, luminance));
-    fields.push_back(FloatField("spectra", {1, uint64_t(o.nThetaI), uint64_t(nl), uint64_t(ns), uint64_t(ns)}, spectra));
+    fields.push_back(FloatField("luminance", {np, uint64_t(o.nThetaI), uint64_t(ns), uint64_t(ns)}, luminance));
+    fields.push_back(FloatField("spectra", {np, uint64_t(o.nThetaI), uint64_t(nl), uint64_t(ns), uint64_t(ns)}, spectra));
     return WriteTensorBytes(fields);
 }
 

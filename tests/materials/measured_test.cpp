@@ -203,6 +203,48 @@ TEST(Measured, ReproducesTheAnalyticBRDF) {
     EXPECT_GT(compared, 1000);
 }
 
+// The anisotropic layout (phi_i slices over [-pi, pi], wm's phi absolute) of the same conductor:
+// pbrt-v4's other code path. Between phi_i slices the sample spaces of rotated lobes are blended,
+// so the agreement needs fine slices: within 5% at 22.5 degrees (measured 2.9%; 45-degree slices
+// gave 14% off the specular peak at theta_o 65).
+TEST(Measured, AnisotropicLayoutReproducesTheAnalyticBRDF) {
+    MeasuredGenOptions o;
+    o.nPhiI = 17;   // every 22.5 degrees
+    o.wavelengths = {400, 550, 750};
+    std::vector<Float> data;
+    MeasuredBRDFData b = BuildMeasuredBRDF(ParseTensorFile(GenerateMeasuredFile(o), kPath), kPath, data);
+    ASSERT_FALSE(b.isotropic);
+    SampledWavelengths wl;
+    const Float lambda[NSpectrumSamples] = {420, 500, 600, 700};
+    for (int i = 0; i < NSpectrumSamples; ++i) {
+        wl.lambda[i] = lambda[i];
+        wl.pdf[i] = 1;
+    }
+    MeasuredBxDF m(&b, data.data(), wl);
+    ConductorBxDF a = GenAnalyticConductor(o, lambda);
+    double worst = 0;
+    for (Float to : {10.f, 40.f, 65.f})
+        for (Float po : {-170.f, -60.f, 0.f, 45.f, 130.f})
+            for (Float ti : {5.f, 30.f, 55.f})
+                for (Float dphi : {0.f, 40.f}) {
+                    Vec3f wo = Dir(to, po), wi = Dir(ti, po + 180 + dphi);
+                    SampledSpectrum fa = a.f(wo, wi, TransportMode::Radiance), fm = m.f(wo, wi, TransportMode::Radiance);
+                    for (int c = 0; c < NSpectrumSamples; ++c) {
+                        double rel = std::abs(double(fm[c]) - fa[c]) / fa[c];
+                        worst = std::max(worst, rel);
+                        EXPECT_LE(rel, 0.05) << "theta_o " << to << " phi_o " << po << " theta_i " << ti << " dphi " << dphi;
+                    }
+                }
+    if (getenv("LU_VERBOSE")) printf("anisotropic layout vs analytic: worst relative error %.4f\n", worst);
+    BSDF bsdf;
+    bsdf.shadingFrame = TestFrame();
+    bsdf.kind = BxDFKind::Measured;
+    bsdf.measured = m;
+    BSDFChi2 r = Chi2TestBSDF(bsdf, Dir(50, 100), 400000, 77);
+    EXPECT_TRUE(Chi2Accepts(r.chi2, 1e-4, 4)) << r.chi2.message;
+    EXPECT_LE(r.mismatches, 2) << r.firstMismatch;
+}
+
 // ---- (3) chi-square of Sample_f against PDF ----
 
 TEST(Measured, Chi2SampleMatchesPDF) {
@@ -212,7 +254,7 @@ TEST(Measured, Chi2SampleMatchesPDF) {
     for (Vec3f wo : {Dir(20, 30), Dir(60, 200), Dir(120, 80)}) {   // the last one below the surface
         BSDFChi2 r = Chi2TestBSDF(b, wo, 400000, 31 + n++);
         if (getenv("LU_VERBOSE")) printf("measured chi2: %s mism=%ld\n", r.chi2.message.c_str(), r.mismatches);
-        EXPECT_TRUE(Chi2Accepts(r.chi2, 1e-4, 3)) << r.chi2.message;
+        EXPECT_TRUE(Chi2Accepts(r.chi2, 1e-4, 4)) << r.chi2.message;   // 4 tests in the suite
         // At most a sample or two whose wi is within 1e-4 of the horizon, where f ~ 1 / cos(wi)
         // moves by 0.3% as the test frame's round trip changes cos(wi) in its last bits.
         EXPECT_LE(r.mismatches, 2) << r.firstMismatch;
