@@ -249,7 +249,8 @@ MeasuredBRDFData BuildMeasuredBRDF(const TensorFile &tf, const std::string &path
         if (reduction != 1) Bad(path, "reduction " + std::to_string(reduction) + " (!= 1) not supported");
     }
     uint64_t total = data.size();
-    for (const TensorField *f : {&ndf, &sigma, &vndf, &luminance, &spectra}) total += 2 * f->bytes.size() / 4;
+    // Each table's values, and at most as many again for its cdfs and its marginal.
+    for (const TensorField *f : {&ndf, &sigma, &vndf, &luminance, &spectra}) total += 3 * f->bytes.size() / 4;
     if (total + 3 * (nPhi + nTheta + nLambda) > uint64_t(UINT32_MAX)) Bad(path, "measured data too large (more than 2^32 values)");
 
     std::vector<float> v = c.Floats(ndf, "ndf", true);
