@@ -89,7 +89,7 @@ TEST(MaterialScenes, CoatedConductorFurnace) {
 
 // The measured material of the feature scene's file against the analytic conductor it tabulates
 // (tests/materials/measured_gen.h), on the quad under L = 1: each pixel is the directional
-// albedo towards the camera. The means agree within 2% (the file's tabulation) plus noise.
+// albedo towards the camera. The means agree within 1% (measured 0.3%) plus noise.
 TEST(MaterialScenes, MeasuredQuadMatchesItsAnalyticConductor) {
     std::string file = std::string(LUCERNA_SOURCE_DIR) + "/scenes/features/measured-tr-conductor.bsdf";
     auto measured = LoadSceneText("measured_quad", QuadScene("", "Material \"measured\" \"string filename\" \"" + file + "\""));
@@ -98,7 +98,9 @@ TEST(MaterialScenes, MeasuredQuadMatchesItsAnalyticConductor) {
     RenderResultForTest rm = RenderScene(*measured, 16, 5, 3), ra = RenderScene(*analytic, 16, 5, 4);
     for (int c = 0; c < 3; ++c) {
         MeanSE m = RegionMean(rm.image, c, 0, 0, 16, 16), a = RegionMean(ra.image, c, 0, 0, 16, 16);
-        EXPECT_NEAR(m.mean, a.mean, 0.02 * a.mean + 4.5 * (m.se + a.se)) << "channel " << c;
+        if (getenv("LU_VERBOSE"))
+            printf("channel %d: measured %.4f +- %.4f, analytic %.4f +- %.4f\n", c, m.mean, m.se, a.mean, a.se);
+        EXPECT_NEAR(m.mean, a.mean, 0.01 * a.mean + 4.5 * (m.se + a.se)) << "channel " << c;
         EXPECT_GT(a.mean, 0.2);
     }
 }
