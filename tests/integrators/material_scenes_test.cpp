@@ -1,4 +1,4 @@
-// pbrt-v4's mix, diffusetransmission and coatedconductor materials through the whole renderer:
+// pbrt-v4's mix, diffusetransmission, coatedconductor and measured materials through the whole renderer:
 // the feature scene (scenes/features/materials-*.pbrt) builds clean and renders finite; a quad
 // under a uniform white environment (radiance = albedo) shows each material's analytic value:
 // mix of equal materials = the material, per pixel; mix by amount a = the blend in the mean;
@@ -17,7 +17,7 @@ namespace {
 
 TEST(MaterialScenes, FeatureScenesBuildCleanAndRenderFinite) {
     std::vector<std::string> files = FeatureSceneFiles({"materials-"});
-    ASSERT_EQ(files.size(), 3u);   // layered-mix, bump, hair
+    ASSERT_EQ(files.size(), 4u);   // bump, hair, layered-mix, measured
     for (const std::string &file : files) {
         SCOPED_TRACE(file);
         auto scene = LoadCleanFeatureScene(file, 48, 24);   // no unsupported feature, no warning
@@ -102,6 +102,24 @@ TEST(MaterialScenes, HairFurnace) {
     if (getenv("LU_VERBOSE")) printf("hair furnace mean %.5f, eumelanin 1.3 mean %.5f\n", m, d);
     EXPECT_LT(d, 0.8 * m);
     EXPECT_GT(d, 0.02);
+}
+
+// The measured material of the feature scene's file against the analytic conductor it tabulates
+// (tests/materials/measured_gen.h), on the quad under L = 1: each pixel is the directional
+// albedo towards the camera. The means agree within 1% (measured 0.3%) plus noise.
+TEST(MaterialScenes, MeasuredQuadMatchesItsAnalyticConductor) {
+    std::string file = std::string(LUCERNA_SOURCE_DIR) + "/scenes/features/measured-tr-conductor.bsdf";
+    auto measured = LoadSceneText("measured_quad", QuadScene("", "Material \"measured\" \"string filename\" \"" + file + "\""));
+    auto analytic = LoadSceneText("measured_quad_ref", QuadScene("", "Material \"conductor\" \"float roughness\" 0.09 "
+        "\"spectrum eta\" [ 360 1.4  400 1.4  750 0.2  830 0.2 ] \"spectrum k\" [ 360 1.9  400 1.9  750 3.6  830 3.6 ]"));
+    RenderResultForTest rm = RenderScene(*measured, 16, 5, 3), ra = RenderScene(*analytic, 16, 5, 4);
+    for (int c = 0; c < 3; ++c) {
+        MeanSE m = RegionMean(rm.image, c, 0, 0, 16, 16), a = RegionMean(ra.image, c, 0, 0, 16, 16);
+        if (getenv("LU_VERBOSE"))
+            printf("channel %d: measured %.4f +- %.4f, analytic %.4f +- %.4f\n", c, m.mean, m.se, a.mean, a.se);
+        EXPECT_NEAR(m.mean, a.mean, 0.01 * a.mean + 4.5 * (m.se + a.se)) << "channel " << c;
+        EXPECT_GT(a.mean, 0.2);
+    }
 }
 
 // A flat and a tilted normal map (EXR, exact values) in a scene's folder; a diffuse quad under a

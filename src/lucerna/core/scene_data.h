@@ -111,7 +111,34 @@ struct SpectrumTexture {
 
 enum class MaterialKind : uint8_t {
     Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, Interface,
-    CoatedConductor, DiffuseTransmission, Mix, Hair
+    CoatedConductor, DiffuseTransmission, Mix, Hair, Measured
+};
+
+// One table of pbrt-v4's PiecewiseLinear2D<nParams> (util/sampling.h) in SceneView::measuredData:
+// a bilinear density over [0,1]^2 of nx x ny vertices (x contiguous), one slice per vertex of the
+// parameter grid (parameter 0 outermost), linear in the parameters in between. Offsets index
+// measuredData; marginalCdf and conditionalCdf are NoIndex for tables that are only evaluated.
+struct PiecewiseLinear2DTable {
+    uint32_t nx = 0, ny = 0;
+    uint32_t nParams = 0;                            // 0, 2 or 3
+    uint32_t paramSize[3] = {1, 1, 1};
+    uint32_t paramStride[3] = {0, 0, 0};             // in slices; 0 for a parameter of resolution 1
+    uint32_t paramValues[3] = {NoIndex, NoIndex, NoIndex};  // ascending values, paramSize[i] each
+    uint32_t data = NoIndex;                         // density values (nx * ny per slice)
+    uint32_t marginalCdf = NoIndex;                  // ny per slice
+    uint32_t conditionalCdf = NoIndex;               // nx * ny per slice
+};
+
+// A measured BRDF (pbrt-v4's MeasuredBRDF, Dupuy & Jakob 2018): the tables of an RGL .bsdf file.
+// ndf: D(wm) over (theta2u, phi2u) of wm; sigma: the projected area of the microsurface seen from
+// w over the same coordinates; vndf: the visible normals' density over the unit square, given
+// (phi_i, theta_i) of wo; luminance: the luminance of the reflectance over the vndf's sample
+// space, same parameters; spectra: the reflectance over the sample space given (phi_i, theta_i,
+// wavelength in nm).
+struct MeasuredBRDFData {
+    PiecewiseLinear2DTable ndf, sigma, vndf, luminance, spectra;
+    bool isotropic = true;   // phi_i has at most 2 values: wm's phi is relative to wo's
+    bool jacobian = false;   // the file's "jacobian" flag (read, unused, as pbrt-v4)
 };
 
 // How a hair material gives its absorption (pbrt-v4's HairMaterial: the first of "sigma_a",
@@ -158,6 +185,8 @@ struct Material {
     SpectrumTexture hairSigmaA;
     FloatTexture eumelanin, pheomelanin;
     FloatTexture hairEta, betaM, betaN, hairAlpha;
+    // measured: the tables of the "filename" file in SceneView::measuredData.
+    MeasuredBRDFData measured;
 };
 
 // ---- Shapes ----
@@ -515,6 +544,7 @@ struct SceneView {
     uint32_t illuminantTables[NumColorSpaces] = {0, 0, 0, 0};  // each color space's illuminant, in spectra
     Span<Medium> media;
     Span<Float> mediumData;         // the grids of the media (MediumGrid)
+    Span<Float> measuredData;       // the tables of the measured materials (MeasuredBRDFData)
     // Shadow rays must walk through interface surfaces (the scene has media or "interface"
     // shapes); false: a shadow ray is one occlusion query.
     bool walkInterfaces = false;

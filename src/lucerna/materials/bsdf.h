@@ -7,6 +7,7 @@
 #include "lucerna/core/scene_data.h"
 #include "lucerna/geometry/shapes.h"
 #include "lucerna/materials/bxdfs.h"
+#include "lucerna/materials/measured.h"
 #include "lucerna/materials/texture.h"
 
 namespace lu {
@@ -25,7 +26,7 @@ struct SpecularLobe {
 };
 
 enum class BxDFKind : uint8_t {
-    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Hair
+    None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Hair, Measured
 };
 
 struct BSDF {
@@ -40,6 +41,7 @@ struct BSDF {
         CoatedConductorBxDF coatedConductor;
         DiffuseTransmissionBxDF diffuseTransmission;
         HairBxDF hair;
+        MeasuredBxDF measured;
     };
 
     LU_HD BSDF() : diffuse() {}
@@ -58,6 +60,7 @@ struct BSDF {
         case BxDFKind::CoatedConductor: return coatedConductor.Flags();
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Flags();
         case BxDFKind::Hair: return hair.Flags();
+        case BxDFKind::Measured: return measured.Flags();
         default: return BxDF_Unset;
         }
     }
@@ -71,6 +74,7 @@ struct BSDF {
         case BxDFKind::CoatedConductor: return coatedConductor.f(wo, wi, mode);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.f(wo, wi, mode);
         case BxDFKind::Hair: return hair.f(wo, wi, mode);
+        case BxDFKind::Measured: return measured.f(wo, wi, mode);
         default: return SampledSpectrum(0);
         }
     }
@@ -84,6 +88,7 @@ struct BSDF {
         case BxDFKind::CoatedConductor: return coatedConductor.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         case BxDFKind::Hair: return hair.Sample_f(wo, uc, u, mode, sampleFlags, bs);
+        case BxDFKind::Measured: return measured.Sample_f(wo, uc, u, mode, sampleFlags, bs);
         default: return false;
         }
     }
@@ -97,6 +102,7 @@ struct BSDF {
         case BxDFKind::CoatedConductor: return coatedConductor.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::DiffuseTransmission: return diffuseTransmission.PDF(wo, wi, mode, sampleFlags);
         case BxDFKind::Hair: return hair.PDF(wo, wi, mode, sampleFlags);
+        case BxDFKind::Measured: return measured.PDF(wo, wi, mode, sampleFlags);
         default: return 0;
         }
     }
@@ -472,6 +478,11 @@ LU_INLINE bool MakeBSDF(const Material &material, const SurfaceInteraction &si, 
         bsdf->hair = MakeHairBxDF(m, ctx, si.uv, lambda, scene);
         return true;
     }
+    case MaterialKind::Measured:
+        // The tables stay in the scene: the BxDF points at the material's layout and the data.
+        bsdf->kind = BxDFKind::Measured;
+        bsdf->measured = MeasuredBxDF(&m.measured, scene.measuredData.ptr, lambda);
+        return true;
     default: return false;
     }
 }

@@ -121,7 +121,8 @@ struct BuildContext {
     // Textures by name (the last definition wins is not allowed: redefinitions are errors).
     std::map<std::string, const TextureEntity *> floatTextures, spectrumTextures;
     std::map<ImageKey, LoadedImage> imageCache;
-    std::map<std::tuple<uint64_t, int>, uint32_t> imageDataCache;  // (texel offset, wrap) -> images index
+    std::map<std::tuple<uint64_t, int>, uint32_t> imageDataCache;
+    std::map<std::string, MeasuredBRDFData> measuredCache;  // measured BRDF file -> its tables in measuredData  // (texel offset, wrap) -> images index
     // Built textures, memoized per name (and spectrum type): each entity is interpreted once.
     std::map<std::string, FloatTexture> floatTextureCache;
     std::map<std::pair<std::string, int>, SpectrumTexture> spectrumTextureCache;

@@ -5,6 +5,7 @@
 
 #include "lucerna/image/image.h"
 #include "lucerna/scene/build_internal.h"
+#include "lucerna/scene/measured_file.h"
 
 namespace lu::build {
 
@@ -78,7 +79,7 @@ uint32_t AddImageData(BuildContext &ctx, const LoadedImage &img, WrapMode wrap) 
 namespace {
 
 bool IsUnsupportedMaterialType(const std::string &t) {
-    static const char *names[] = {"measured", "subsurface"};
+    static const char *names[] = {"subsurface"};
     for (const char *n : names)
         if (t == n) return true;
     return false;
@@ -175,6 +176,27 @@ void ReadHair(BuildContext &ctx, const ParameterDictionary &p, Material &m, cons
     m.hairAlpha = GetFloatTexture(ctx, p, "alpha", 2.f);
 }
 
+// pbrt-v4's MeasuredMaterial::Create: "filename", an RGL tensor file (Dupuy & Jakob 2018), read
+// once per path; a missing, malformed or truncated file is an error at the parameter.
+void ReadMeasured(BuildContext &ctx, const ParameterDictionary &p, Material &m, const FileLoc &loc,
+                  const std::string &owner) {
+    std::string filename = p.GetOneString("filename", "");
+    FileLoc at = ParamLoc(p, "filename", loc);
+    if (filename.empty()) Fail(at, owner + ": the measured material needs a \"string filename\" (an RGL .bsdf file)");
+    std::string path = ResolveScenePath(ctx, "", filename);
+    if (auto it = ctx.measuredCache.find(path); it != ctx.measuredCache.end()) {
+        m.measured = it->second;
+        return;
+    }
+    ctx.scene.inputFiles.push_back(path);
+    try {
+        m.measured = BuildMeasuredBRDF(ReadTensorFile(path), path, ctx.scene.measuredData);
+    } catch (const MeasuredFileError &e) {
+        Fail(at, owner + ": " + e.what());
+    }
+    ctx.measuredCache[path] = m.measured;
+}
+
 // A mix's child: a named material, built now if it is not yet (MakeNamedMaterial order does
 // not matter); not "interface" (pbrt-v4 refuses it), not the mix itself.
 uint32_t MixChild(BuildContext &ctx, const std::string &name, const FileLoc &at, const std::string &owner) {
@@ -245,6 +267,9 @@ uint32_t CreateMaterial(BuildContext &ctx, const std::string &type, const Parame
     } else if (type == "thindielectric") {
         m.kind = MaterialKind::ThinDielectric;
         ReadEta(ctx, p, m);
+    } else if (type == "measured") {
+        m.kind = MaterialKind::Measured;
+        ReadMeasured(ctx, p, m, loc, owner);
     } else if (type == "coateddiffuse") {
         m.kind = MaterialKind::CoatedDiffuse;
         m.reflectance = GetSpectrumTexture(ctx, p, "reflectance", SpectrumType::Albedo, Spectrum::Const(0.5f));

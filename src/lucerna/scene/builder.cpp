@@ -51,6 +51,7 @@ SceneView HostScene::View() const {
     v.pmjPoints = SpanOf(pmjPoints);
     v.media = SpanOf(media);
     v.mediumData = SpanOf(mediumData);
+    v.measuredData = SpanOf(measuredData);
     v.walkInterfaces = walkInterfaces;
     v.spectra = spectra.Tables();
     // sRGB's table alone unless an image's RGB is in another color space (constant RGB values

@@ -82,6 +82,7 @@ class HostScene {
     std::vector<Vec2f> pmjPoints;   // the pmj02bn sampler's tables (scene/pmj02_build.h)
     std::vector<Medium> media;
     std::vector<Float> mediumData;
+    std::vector<Float> measuredData;   // measured materials' tables (SceneView::measuredData)
     bool walkInterfaces = false;   // media or interface shapes: shadow rays walk through interfaces
     std::vector<FileLoc> collimatedLightLocs;   // where each LightSource "collimated" is (the path warning)
     CameraData camera;

@@ -12,7 +12,7 @@ Span<T> DeviceScene::Upload(DeviceBuffer<T> &buf, Span<T> host) {
 
 DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     // Every span of SceneView must be uploaded below; this trips when SceneView changes.
-    static_assert(sizeof(SceneView) == 984, "SceneView changed: upload its new spans in DeviceScene");
+    static_assert(sizeof(SceneView) == 1000, "SceneView changed: upload its new spans in DeviceScene");
     view_ = host;   // scalars (camera, film, filter, bounds, table sizes) copy as they are
     view_.positions = Upload(positions_, host.positions);
     view_.normals = Upload(normals_, host.normals);
@@ -43,6 +43,7 @@ DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
     view_.rgbToSpecZNodes = Upload(rgbToSpecZNodes_, host.rgbToSpecZNodes);
     view_.media = Upload(media_, host.media);
     view_.mediumData = Upload(mediumData_, host.mediumData);
+    view_.measuredData = Upload(measuredData_, host.measuredData);
     view_.camera.lensElements = Upload(lensElements_, host.camera.lensElements);
     view_.camera.exitPupilBounds = Upload(exitPupilBounds_, host.camera.exitPupilBounds);
     Span<Float> spectra{host.spectra.data, uint32_t(host.spectra.count * TabulatedSpectrumSize)};

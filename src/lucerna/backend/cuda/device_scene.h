@@ -49,6 +49,7 @@ class DeviceScene {
     DeviceBuffer<Float> rgbToSpecCoeffs_, rgbToSpecZNodes_;
     DeviceBuffer<Medium> media_;
     DeviceBuffer<Float> mediumData_;
+    DeviceBuffer<Float> measuredData_;
     DeviceBuffer<LensElement> lensElements_;
     DeviceBuffer<Bounds2f> exitPupilBounds_;
     DeviceBuffer<BVHNode> nodes_;
