@@ -6,36 +6,14 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/bvh_test_util.h"
+#include "geometry/traced_scene.h"
 #include "gpu/render_compare.h"
 #include "integrators/render_helpers.h"
 
 namespace lu::test {
 namespace {
 
-// A scene with both tracers over it.
-struct Traced {
-    std::unique_ptr<HostScene> scene;
-    SceneView view;
-    GpuBVH bvh;
-    std::unique_ptr<EmbreeScene> embree;
-    bool Intersect(bool useBVH, const Ray &r, HitRecord *hit) const {
-        return useBVH ? IntersectClosest(bvh.View(), view, r, hit) : embree->Intersect(r, hit);
-    }
-    bool Occluded(bool useBVH, const Ray &r) const {
-        return useBVH ? IntersectAny(bvh.View(), view, r) : embree->Occluded(r);
-    }
-};
-
-std::unique_ptr<Traced> Trace(const std::string &name, const std::string &text) {
-    auto t = std::make_unique<Traced>();
-    t->scene = LoadSceneText(name, text);
-    EXPECT_TRUE(t->scene);
-    t->view = t->scene->View();
-    t->bvh = BuildBVH(t->view);
-    t->embree = std::make_unique<EmbreeScene>(t->view);
-    return t;
-}
+std::unique_ptr<Traced> Trace(const std::string &name, const std::string &text) { return TraceSceneText(name, text); }
 
 const char *kHead = "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
                     "Film \"rgb\" \"integer xresolution\" [ 32 ] \"integer yresolution\" [ 32 ]\nWorldBegin\n"

@@ -10,8 +10,7 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/bvh_test_util.h"
-#include "integrators/render_helpers.h"
+#include "geometry/traced_scene.h"
 #include "lucerna/lights/shape_sampling.h"
 #include "lucerna/scene/error.h"
 #include "support/chi2.h"
@@ -19,25 +18,9 @@
 namespace lu::test {
 namespace {
 
-struct Traced {
-    std::unique_ptr<HostScene> scene;
-    SceneView view;
-    GpuBVH bvh;
-    std::unique_ptr<EmbreeScene> embree;
-    bool Intersect(bool useBVH, const Ray &r, HitRecord *hit) const {
-        return useBVH ? IntersectClosest(bvh.View(), view, r, hit) : embree->Intersect(r, hit);
-    }
-};
-
 std::unique_ptr<Traced> Trace(const std::string &name, const std::string &world) {
-    auto t = std::make_unique<Traced>();
-    t->scene = LoadSceneText(name, "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
-                                   "LightSource \"point\" \"point3 from\" [ 0 0 -4 ]\n" + world);
-    EXPECT_TRUE(t->scene);
-    t->view = t->scene->View();
-    t->bvh = BuildBVH(t->view);
-    t->embree = std::make_unique<EmbreeScene>(t->view);
-    return t;
+    return TraceSceneText(name, "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+                                "LightSource \"point\" \"point3 from\" [ 0 0 -4 ]\n" + world);
 }
 
 Ray MakeRay(Vec3f o, Vec3f d) {

@@ -133,6 +133,13 @@ inline BSDFChi2 Chi2TestBSDF(const BSDF &bsdf, Vec3f woLocal, long n, uint64_t s
 struct MeanEstimate {
     double mean = 0, stdErr = 0;
 };
+// The mean of n values and its standard error from their sum and sum of squares.
+inline MeanEstimate MeanOfSums(double sum, double sum2, long n) {
+    MeanEstimate e;
+    e.mean = sum / n;
+    e.stdErr = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
+    return e;
+}
 inline MeanEstimate SampledAlbedo(const BSDF &bsdf, Vec3f woLocal, long n, uint64_t seed, int c = 0,
                                   TransportMode mode = TransportMode::Radiance) {
     Vec3f wo = bsdf.shadingFrame.FromLocal(Normalize(woLocal));
@@ -148,10 +155,7 @@ inline MeanEstimate SampledAlbedo(const BSDF &bsdf, Vec3f woLocal, long n, uint6
         sum += w;
         sum2 += w * w;
     }
-    MeanEstimate e;
-    e.mean = sum / n;
-    e.stdErr = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
-    return e;
+    return MeanOfSums(sum, sum2, n);
 }
 
 }  // namespace lu::test

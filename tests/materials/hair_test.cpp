@@ -38,10 +38,7 @@ MeanEstimate UniformAlbedo(Vec3f wo, Float h, const SampledSpectrum &sigma_a, Fl
         sum += w;
         sum2 += w * w;
     }
-    MeanEstimate e;
-    e.mean = sum / n;
-    e.stdErr = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
-    return e;
+    return MeanOfSums(sum, sum2, n);
 }
 
 // The integral over the sphere of g(wi) by the midpoint rule in (wi.x, phi) (the sphere's area

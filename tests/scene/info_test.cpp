@@ -39,23 +39,11 @@ TEST(SceneSummary, ReportsWhatWasRead) {
     for (const std::string &w : diag.warnings) EXPECT_TRUE(Contains(r, w));
 }
 
-// Runs `lucerna info FILE`; returns the exit status and the combined output.
-int RunInfo(const std::string &file, std::string *out) {
-    std::string cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna info '" + file + "' 2>&1";
-    FILE *p = popen(cmd.c_str(), "r");
-    if (!p) return -1;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out->append(buf, n);
-    int status = pclose(p);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(InfoCommand, ExitCodesAndOutput) {
     const std::string binary = std::string(LUCERNA_BINARY_DIR) + "/lucerna";
     ASSERT_TRUE(std::filesystem::exists(binary)) << binary << " is missing (test_scene depends on the lucerna target)";
     std::string out;
-    EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), &out), 0) << out;
+    EXPECT_EQ(test::RunLucernaInfo(test::SharedPath("scenes/bitterli-cornell-box/scene-v4.pbrt"), &out), 0) << out;
     EXPECT_TRUE(Contains(out, "resolution: 1024 x 1024")) << out;
     EXPECT_TRUE(Contains(out, "triangles: 36")) << out;
     EXPECT_TRUE(Contains(out, "lights: 2 (diffuse area 2)")) << out;
@@ -63,14 +51,14 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     std::string dir = test::TempDir("info_cmd");
     std::ofstream(dir + "/bad.pbrt") << "Film \"rgb\"\nCamera \"perspective\" \"float fov\" [ 180 ]\nWorldBegin\n";
     std::string err;
-    EXPECT_EQ(RunInfo(dir + "/bad.pbrt", &err), 2) << err;
+    EXPECT_EQ(test::RunLucernaInfo(dir + "/bad.pbrt", &err), 2) << err;
     EXPECT_TRUE(Contains(err, "bad.pbrt:2:")) << err;
     EXPECT_TRUE(Contains(err, "error:")) << err;
     EXPECT_TRUE(Contains(err, "fov")) << err;
     // An error in an included file says where it was included from.
     std::ofstream(dir + "/top.pbrt") << "\nInclude \"bad.pbrt\"\n";
     std::string chained;
-    EXPECT_EQ(RunInfo(dir + "/top.pbrt", &chained), 2) << chained;
+    EXPECT_EQ(test::RunLucernaInfo(dir + "/top.pbrt", &chained), 2) << chained;
     EXPECT_TRUE(Contains(chained, "In file included from " + dir + "/top.pbrt:2:1:\n" + dir + "/bad.pbrt:2:")) << chained;
 
     // Every unsupported feature at once, each at its file:line, the included one with its chain;
@@ -104,7 +92,7 @@ TEST(InfoCommand, ExitCodesAndOutput) {
     }
 
     std::string media;
-    EXPECT_EQ(RunInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 0) << media;
+    EXPECT_EQ(test::RunLucernaInfo(test::SharedPath("scenes/bitterli-volumetric-caustic/scene-v4.pbrt"), &media), 0) << media;
     EXPECT_TRUE(Contains(media, "media: 1 (homogeneous 1)")) << media;
 
     // A gzip-compressed scene reads as the plain one; a truncated one is exit 2 at the file.
@@ -121,10 +109,10 @@ TEST(InfoCommand, ExitCodesAndOutput) {
         std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
     }
     std::string zipped;
-    EXPECT_EQ(RunInfo(gz, &zipped), 0) << zipped;
+    EXPECT_EQ(test::RunLucernaInfo(gz, &zipped), 0) << zipped;
     EXPECT_TRUE(Contains(zipped, "triangles: 36")) << zipped;
     std::string truncated;
-    EXPECT_EQ(RunInfo(cut, &truncated), 2) << truncated;
+    EXPECT_EQ(test::RunLucernaInfo(cut, &truncated), 2) << truncated;
     EXPECT_TRUE(Contains(truncated, cut + ": error: truncated gzip data")) << truncated;
 }
 
@@ -138,7 +126,7 @@ TEST(InfoCommand, FilmColorSpaceInInfoAndExrHeader) {
         std::ofstream(scene) << "ColorSpace \"" << space << "\"\nFilm \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\n"
                              << "Camera \"perspective\"\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n";
         std::string out;
-        EXPECT_EQ(RunInfo(scene, &out), 0) << out;
+        EXPECT_EQ(test::RunLucernaInfo(scene, &out), 0) << out;
         EXPECT_TRUE(Contains(out, std::string("color space: ") + space)) << out;
         std::string exr = dir + "/" + space + ".exr";
         test::ProcessResult r = test::RunProcess({test::LucernaBinary(), "render", scene, "-o", exr, "--spp", "16"});

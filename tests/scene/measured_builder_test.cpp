@@ -35,17 +35,6 @@ SceneError ErrorOfScene(const std::string &dir, const std::string &text) {
     return SceneError(FileLoc{}, "");
 }
 
-int RunInfo(const std::string &file, std::string *out) {
-    std::string cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna info '" + file + "' 2>&1";
-    FILE *p = popen(cmd.c_str(), "r");
-    if (!p) return -1;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out->append(buf, n);
-    int status = pclose(p);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 TEST(Measured, BuilderLocatesMissingAndBadFiles) {
     std::string dir = test::TempDir("measured_builder");
     std::vector<uint8_t> good = test::GenerateMeasuredFile();
@@ -69,7 +58,7 @@ TEST(Measured, BuilderLocatesMissingAndBadFiles) {
     // `lucerna info` on the truncated file: exit 2, file:line and the file's name.
     std::ofstream(dir + "/info.pbrt") << kHeader << "\nMaterial \"measured\" \"string filename\" \"cut.bsdf\"\nShape \"sphere\"\n";
     std::string out;
-    EXPECT_EQ(RunInfo(dir + "/info.pbrt", &out), 2) << out;
+    EXPECT_EQ(test::RunLucernaInfo(dir + "/info.pbrt", &out), 2) << out;
     EXPECT_TRUE(Contains(out, dir + "/info.pbrt:5:")) << out;
     EXPECT_TRUE(Contains(out, "cut.bsdf\": truncated tensor file")) << out;
 }
@@ -77,7 +66,7 @@ TEST(Measured, BuilderLocatesMissingAndBadFiles) {
 TEST(Measured, FeatureSceneReadsWithNothingUnsupported) {
     std::string file = std::string(LUCERNA_SOURCE_DIR) + "/scenes/features/materials-measured.pbrt";
     std::string out;
-    EXPECT_EQ(RunInfo(file, &out), 0) << out;
+    EXPECT_EQ(test::RunLucernaInfo(file, &out), 0) << out;
     EXPECT_TRUE(Contains(out, "unsupported: 0\n")) << out;
     EXPECT_TRUE(Contains(out, "measured 1")) << out;
     Diagnostics diag;

@@ -2,6 +2,9 @@
 // references), per-test temporary folders, and running the built binaries and scripts.
 #pragma once
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,6 +12,19 @@
 #include "support/chi2.h"
 
 namespace lu::test {
+
+// Runs `lucerna info FILE` with the built binary; returns its exit status (-1 when it did not
+// exit normally) and appends its combined stdout and stderr to *out.
+inline int RunLucernaInfo(const std::string &file, std::string *out) {
+    std::string cmd = std::string(LUCERNA_BINARY_DIR) + "/lucerna info '" + file + "' 2>&1";
+    FILE *p = popen(cmd.c_str(), "r");
+    if (!p) return -1;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0) out->append(buf, n);
+    int status = pclose(p);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 // Path of a file under data/ in the source tree: the shared scenes and references
 // ("scenes/bitterli-cornell-box/scene-v4.pbrt", "refs/cornell-box.exr"; see data/README.md).

@@ -488,6 +488,18 @@ LU_INLINE void TriangleBarycentrics(const Vec3f &p0, const Vec3f &p1, const Vec3
     *b2 = det != 0 ? (g11 * r2 - g12 * r1) / det : 0;
 }
 
+// pbrt-v4's shading tangents of a mesh with vertex normals ns (triangles, bilinear patches):
+// ts = ns x dpdu, ss = ts x ns; any frame around ns when dpdu is along it.
+LU_INLINE void ShadingTangentsAround(const Vec3f &ns, ShadingDerivatives *d) {
+    Vec3f ts = Cross(ns, d->dpdu);
+    if (LengthSquared(ts) > 0) {
+        d->dpdu = Cross(ts, ns);
+        d->dpdv = ts;
+    } else {
+        CoordinateSystem(ns, &d->dpdu, &d->dpdv);
+    }
+}
+
 // pbrt-v4's shading dpdu, dpdv (Triangle, Sphere, Disk, Cylinder InteractionFromIntersection) at the hit si
 // and the derivatives of the unit shading normal along them (ShadingNormalDerivative; pbrt-v4
 // differentiates a mesh's unnormalized interpolated normal and does not flip a reversed
@@ -532,14 +544,7 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         TriangleBarycentrics(p0, p1, p2, si.p, &hit.b1, &hit.b2);
         d.dndu = ShadingNormalDerivative(s, hit, si, d.dpdu);
         d.dndv = ShadingNormalDerivative(s, hit, si, d.dpdv);
-        // pbrt-v4's shading tangents: ts = ns x dpdu, ss = ts x ns.
-        Vec3f ts = Cross(si.ns, d.dpdu);
-        if (LengthSquared(ts) > 0) {
-            d.dpdu = Cross(ts, si.ns);
-            d.dpdv = ts;
-        } else {
-            CoordinateSystem(si.ns, &d.dpdu, &d.dpdv);
-        }
+        ShadingTangentsAround(si.ns, &d);
         return d;
     }
     case ShapeKind::Sphere: {
@@ -608,13 +613,7 @@ LU_INLINE ShadingDerivatives ComputeShadingDerivatives(const SceneView &s, const
         };
         d.dndu = along(d.dpdu);
         d.dndv = along(d.dpdv);
-        Vec3f ts = Cross(si.ns, d.dpdu);
-        if (LengthSquared(ts) > 0) {
-            d.dpdu = Cross(ts, si.ns);
-            d.dpdv = ts;
-        } else {
-            CoordinateSystem(si.ns, &d.dpdu, &d.dpdv);
-        }
+        ShadingTangentsAround(si.ns, &d);
         return d;
     }
     case ShapeKind::Curves: {
