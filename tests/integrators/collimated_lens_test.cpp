@@ -272,7 +272,7 @@ namespace {
 // inside one homogeneous medium filling space, with no surface. Single scattering (maxdepth 1).
 constexpr double kFogSigmaA = 0.1, kFogSigmaS = 0.3, kFogG = 0.5, kFogR = 0.05, kFogP = 1;
 constexpr int kFogW = 32, kFogH = 128;
-std::string FogScene() {
+std::string FogScene(double radius = kFogR) {
     char buf[2048];
     std::snprintf(buf, sizeof(buf), R"(
 MakeNamedMedium "fog" "string type" "homogeneous" "spectrum sigma_a" [360 %g 830 %g]
@@ -287,11 +287,22 @@ WorldBegin
 LightSource "collimated" "point3 from" [0 0 1] "point3 to" [0 0 0] "float radius" %g
     "spectrum E" [360 1 830 1] "float power" %g
 )",
-                  kFogSigmaA, kFogSigmaA, kFogSigmaS, kFogSigmaS, kFogG, kFogW, kFogH, kFogR, kFogP);
+                  kFogSigmaA, kFogSigmaA, kFogSigmaS, kFogSigmaS, kFogG, kFogW, kFogH, radius, kFogP);
     return buf;
 }
 
 }  // namespace
+
+// The line brightness of the fog beam over z in [0.2, 0.4] (rows 0..31), per nm, for one render.
+double FogUpperBandBrightness(const Image &im, double ybar) {
+    double sum = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < kFogW; ++x) {
+            XYZ xyz = RGBToXYZ(RGB{im.At(x, y, 0), im.At(x, y, 1), im.At(x, y, 2)});
+            sum += xyz[1] / ybar * (0.2 / kFogW);
+        }
+    return sum / 32;
+}
 
 // Every medium vertex in the beam connects to it: the line brightness of the beam (the image
 // integrated across it, per unit height) is sigma_s p_HG(90 deg) (P / 470 nm) exp(-sigma_t (1 - z))
@@ -337,6 +348,41 @@ TEST(CollimatedFog, BeamInFogHasTheSingleScatteringLineBrightness) {
                     bands[b].zLo, bands[b].zHi, g.mean, g.se, expected, expected / pHG90 / (4 * M_PI));
         EXPECT_NEAR(g.mean, expected, 4 * g.se + 0.01 * expected) << "band " << b;
     }
+}
+
+// The beam-segment technique (a distance sampled where the camera ray crosses the beam's region,
+// connected to the beam) against free-flight vertices alone (--beam-segments false: next-event
+// estimation and phase rays that cross the disc), 16 passes x 8 seeds each. On a beam wider than
+// the window (radius 0.3) at early passes, where free-flight vertices find the beam often, the two
+// give the same line brightness within 4 standard errors (1.4% of it: the check has teeth). On
+// the thin beam (radius 0.05) at late passes (N = 2^20: a narrow kernel) free flight rarely
+// lands in the beam; the two agree, and the segment technique's standard error is at least 5x
+// smaller (measured: 10x, a 100x smaller variance at equal samples).
+TEST(CollimatedFog, BeamSegmentTechniqueAgreesWithFreeFlightAndIsLessNoisy) {
+    auto bands = [](double radius, uint32_t firstPass) {
+        auto scene = LoadSceneText("beam_fog_seg", FogScene(radius));
+        const double ybar = scene->spectra.ToPhotometric(Spectrum::Const(1));
+        std::vector<double> got[2];
+        for (int k = 0; k < 2; ++k)
+            for (int s = 0; s < 8; ++s) {
+                RenderSettings settings = TestSettings(*scene, int(firstPass) + 16, 1, 300 + s);
+                settings.integrator = IntegratorKind::RegPath;
+                settings.regAngle = kSigma0 * 180 / M_PI;
+                settings.beamSegments = k == 0;
+                got[k].push_back(FogUpperBandBrightness(RenderFromPass(*scene, settings, firstPass), ybar));
+            }
+        return std::make_pair(Over(got[0]), Over(got[1]));
+    };
+    auto [wideSeg, wideFF] = bands(0.3, 0);
+    std::printf("wide beam: segments %.5g +- %.2g, free flight %.5g +- %.2g per nm\n", wideSeg.mean, wideSeg.se,
+                wideFF.mean, wideFF.se);
+    EXPECT_LT(wideFF.se, 0.03 * wideFF.mean);
+    EXPECT_NEAR(wideSeg.mean, wideFF.mean, 4 * std::sqrt(Sqr(wideSeg.se) + Sqr(wideFF.se)));
+    auto [thinSeg, thinFF] = bands(kFogR, 1u << 20);
+    std::printf("thin beam: segments %.5g +- %.2g, free flight %.5g +- %.2g per nm (se ratio %.3g)\n", thinSeg.mean,
+                thinSeg.se, thinFF.mean, thinFF.se, thinFF.se / thinSeg.se);
+    EXPECT_NEAR(thinSeg.mean, thinFF.mean, 4 * std::sqrt(Sqr(thinSeg.se) + Sqr(thinFF.se)));
+    EXPECT_GT(thinFF.se, 5 * thinSeg.se);
 }
 
 }  // namespace lu::test

@@ -10,6 +10,7 @@
 
 #include "integrators/render_helpers.h"
 #include "lucerna/lights/collimated.h"
+#include "lucerna/lights/light_sampler.h"
 #include "lucerna/scene/light_build.h"
 #include "lucerna/spectra/registry.h"
 
@@ -23,7 +24,7 @@ constexpr int kRes = 64;   // the film covers [-0.5, 0.5]^2 of the plane
 // A beam of radius kR at height kD pointing down onto a diffuse plane at z = 0, seen from above
 // by an orthographic camera (box filter: a pixel is the mean radiance over its square). The
 // beam's spectrum and the albedo are constant, so the image's Y is the radiance per nm.
-std::string BeamScene(const std::string &profile = "\"string profile\" \"uniform\"", double radius = kR) {
+std::string BeamSceneWith(const std::string &aperture, const std::string &profile, const std::string &lightCtm = "") {
     char buf[2048];
     std::snprintf(buf, sizeof(buf), R"(
 LookAt 0 0 2  0 0 0  0 1 0
@@ -32,12 +33,18 @@ Film "rgb" "integer xresolution" %d "integer yresolution" %d "string filename" "
 PixelFilter "box"
 Sampler "independent"
 WorldBegin
-LightSource "collimated" "point3 from" [0 0 %g] "point3 to" [0 0 0] "float radius" %g %s
+AttributeBegin
+%s
+LightSource "collimated" "point3 from" [0 0 %g] "point3 to" [0 0 0] %s %s
     "spectrum E" [360 1 830 1] "float power" %g
+AttributeEnd
 Material "diffuse" "spectrum reflectance" [360 %g 830 %g]
 Shape "trianglemesh" "integer indices" [0 1 2 0 2 3] "point3 P" [-4 -4 0 4 -4 0 4 4 0 -4 4 0]
-)", kRes, kRes, kD, radius, profile.c_str(), kP, kAlbedo, kAlbedo);
+)", kRes, kRes, lightCtm.c_str(), kD, aperture.c_str(), profile.c_str(), kP, kAlbedo, kAlbedo);
     return buf;
+}
+std::string BeamScene(const std::string &profile = "\"string profile\" \"uniform\"", double radius = kR) {
+    return BeamSceneWith("\"float radius\" " + std::to_string(radius), profile);
 }
 
 // The radiance per nm of a pixel whose spectrum is constant: the film's Y is the integral of L
@@ -68,6 +75,7 @@ Image RenderBeamPasses(const HostScene &scene, bool regularize, uint32_t firstPa
 struct SpotMoments {
     double power = 0;    // integral of the radiance over the plane (per nm)
     double rho2 = 0;     // second moment of the spot about the axis
+    double xx = 0, yy = 0, xy = 0;   // its second moments in the image's axes
     double centre = 0;   // mean radiance within rho < 0.5 R
 };
 SpotMoments Moments(const Image &im) {
@@ -76,13 +84,19 @@ SpotMoments Moments(const Image &im) {
     int nc = 0;
     for (int y = 0; y < im.height; ++y)
         for (int x = 0; x < im.width; ++x) {
-            double v = PixelY(im, x, y), r2 = Sqr(PixelPos(x)) + Sqr(PixelPos(y));
+            double v = PixelY(im, x, y), px = PixelPos(x), py = PixelPos(y), r2 = Sqr(px) + Sqr(py);
             w += v;
             wr += v * r2;
+            m.xx += v * px * px;
+            m.yy += v * py * py;
+            m.xy += v * px * py;
             if (r2 < Sqr(0.5 * kR)) { c += v; ++nc; }
         }
     m.power = w * kPixel * kPixel;
     m.rho2 = wr / w;
+    m.xx /= w;
+    m.yy /= w;
+    m.xy /= w;
     m.centre = c / nc;
     return m;
 }
@@ -188,6 +202,30 @@ TEST(Collimated, NarrowBeamUnderAWideKernelIsSampledThroughTheDisc) {
     }
 }
 
+// A weak beam next to a strong lamp: the narrow beam above beside a point light of 1000 W under
+// the plane (it lights the far side only). By power alone the beam would get a pmf of 2e-3 and
+// its spot, which only next-event estimation finds, a few samples per pass; the selection's beam
+// share gives it half of them, and the spot converges as it does alone.
+TEST(Collimated, WeakBeamBesideAStrongLampKeepsItsLightSamples) {
+    auto scene = LoadSceneText("beam_weak", BeamSceneWith("\"float radius\" 0.005", "",
+                                                          "LightSource \"point\" \"point3 from\" [0 0 -1] \"float power\" 1000"));
+    gYbarIntegral = scene->spectra.ToPhotometric(Spectrum::Const(1));
+    ASSERT_EQ(scene->lights.size(), 2u);
+    const SceneView view = scene->View();
+    uint32_t beam = scene->lights[0].kind == LightKind::Collimated ? 0 : 1;
+    double beamPower = LightPower(scene->lights[beam], view), lampPower = LightPower(scene->lights[1 - beam], view);
+    EXPECT_GT(lampPower, 100 * beamPower);
+    double byPower = beamPower / (beamPower + lampPower);
+    EXPECT_NEAR(LightPMF(view, beam), kBeamSelectionShare + (1 - kBeamSelectionShare) * byPower, 1e-6);
+    EXPECT_NEAR(LightPMF(view, 1 - beam), (1 - kBeamSelectionShare) * (1 - byPower), 1e-6);
+    const double power = kAlbedo / M_PI * kP / 470;
+    Stat p = OverSeeds(4, [&](uint32_t s) { return Moments(RenderBeamPasses(*scene, true, 0, 16, 120 + s)).power; });
+    std::printf("weak beam: power %.6g +- %.2g (expected %.6g), relative se %.3g; pmf by power %.3g\n", p.mean, p.se, power,
+                p.se / power, byPower);
+    EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "se " << p.se;
+    EXPECT_LT(p.se, 0.03 * power);
+}
+
 // Plain path tracing never reaches the beam: black.
 TEST(Collimated, PathRendersTheBeamBlack) {
     auto scene = LoadSceneText("beam_path", BeamScene());
@@ -214,7 +252,7 @@ TEST(Collimated, GaussianProfileNormalizesToPower) {
         double e = 0;
         for (int lam = 360; lam <= 830; ++lam)
             e += (lam == 360 || lam == 830 ? 0.5 : 1.0) * scene->spectra.Eval(l.spectrum, Float(lam));
-        integral += e * l.scale * BeamProfile(l, Float(rho * rho)) * 2 * M_PI * rho * (kR / n);
+        integral += e * l.scale * BeamProfile(l, Vec2f(Float(rho), 0)) * 2 * M_PI * rho * (kR / n);
     }
     EXPECT_NEAR(integral, kP, 1e-3 * kP);
     // Light selection sees the same power (LightPhi at the sampled wavelengths).
@@ -236,6 +274,64 @@ TEST(Collimated, GaussianProfileNormalizesToPower) {
     EXPECT_NEAR(r.mean, pred, 4 * r.se + 0.01 * pred) << "se " << r.se;
 }
 
+// A rectangular aperture, 0.3 x 0.1 turned 30 degrees about the beam, deposits its power in its
+// own shape: late, the spot's second-moment matrix is the uniform rectangle's, R diag(a^2, b^2) R^T
+// / 3 (a, b the half sizes), plus the kernel's isotropic blur (half of d^2 <tan^2 theta> per axis)
+// and a pixel's spread. A disc, or the rectangle unturned, would fail the off-diagonal term.
+TEST(Collimated, RectangleApertureDepositsItsPowerInItsShape) {
+    const double a = 0.15, b = 0.05, turn = 30 * M_PI / 180;
+    auto scene = LoadSceneText("beam_rect", BeamSceneWith("\"string aperture\" \"rect\" \"float width\" 0.3 \"float height\" 0.1",
+                                                          "", "Rotate 30 0 0 1"));
+    gYbarIntegral = scene->spectra.ToPhotometric(Spectrum::Const(1));
+    const Light &l = scene->lights[0];
+    ASSERT_TRUE(BeamIsRectangle(l));
+    EXPECT_NEAR(l.beamRadius, std::sqrt(a * a + b * b), 1e-6);
+    EXPECT_NEAR(LightPower(l, scene->View()), kP, 1e-3 * kP);
+    const double power = kAlbedo / M_PI * kP / 470;
+    const uint32_t late = 1u << 20;
+    SpotMoments m[4];
+    for (int s = 0; s < 4; ++s) m[s] = Moments(RenderBeamPasses(*scene, true, late, 16, 90 + s));
+    Stat p = OverSeeds(4, [&](uint32_t i) { return m[i].power; });
+    Stat xx = OverSeeds(4, [&](uint32_t i) { return m[i].xx; });
+    Stat yy = OverSeeds(4, [&](uint32_t i) { return m[i].yy; });
+    Stat xy = OverSeeds(4, [&](uint32_t i) { return m[i].xy; });
+    EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "se " << p.se;
+    double blur = (PredictedRho2(late, 16) - Sqr(kR) / 2) / 2;   // per axis: kernel and pixel
+    double c = std::cos(turn), sn = std::sin(turn), A = a * a / 3, B = b * b / 3;
+    double pxx = c * c * A + sn * sn * B + blur, pyy = sn * sn * A + c * c * B + blur, pxy = c * sn * (A - B);
+    std::printf("rectangle: power %.6g +- %.2g (expected %.6g); xx %.6g (%.6g) yy %.6g (%.6g) xy %.6g (%.6g)\n", p.mean,
+                p.se, power, xx.mean, pxx, yy.mean, pyy, xy.mean, pxy);
+    // The image's y axis may run either way (PixelPos): compare |xy|.
+    EXPECT_NEAR(xx.mean, pxx, 4 * xx.se + 0.01 * pxx);
+    EXPECT_NEAR(yy.mean, pyy, 4 * yy.se + 0.01 * pyy);
+    EXPECT_NEAR(std::abs(xy.mean), pxy, 4 * xy.se + 0.01 * pxy);
+}
+
+// A gaussian profile on a rectangle integrates (wavelengths x aperture) to the power; the light's
+// profile integral is the separable erf product, checked by quadrature over the rectangle.
+TEST(Collimated, GaussianRectangleNormalizesToPower) {
+    auto scene = LoadSceneText("beam_rect_gauss", BeamSceneWith("\"string aperture\" \"rect\" \"float width\" 0.2 "
+                                                                "\"float height\" 0.08",
+                                                                "\"string profile\" \"gaussian\" \"float waist\" 0.05"));
+    gYbarIntegral = scene->spectra.ToPhotometric(Spectrum::Const(1));
+    const Light &l = scene->lights[0];
+    double q = 0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Vec2f xy(Float(((i + 0.5) / n - 0.5) * 0.2), Float(((j + 0.5) / n - 0.5) * 0.08));
+            q += BeamProfile(l, xy) * (0.2 / n) * (0.08 / n);
+        }
+    EXPECT_NEAR(BeamProfileIntegral(l), q, 1e-4 * q);
+    EXPECT_EQ(BeamProfile(l, Vec2f(0.099f, 0.039f)) > 0, true);
+    EXPECT_EQ(BeamProfile(l, Vec2f(0.101f, 0)), 0);
+    EXPECT_EQ(BeamProfile(l, Vec2f(0, 0.041f)), 0);
+    EXPECT_NEAR(LightPower(l, scene->View()), kP, 1e-3 * kP);
+    const double power = kAlbedo / M_PI * kP / 470;
+    Stat p = OverSeeds(4, [&](uint32_t s) { return Moments(RenderBeamPasses(*scene, true, 1u << 20, 16, 70 + s)).power; });
+    EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "se " << p.se;
+}
+
 // Bad parameters: a located error (the parameter's position), and nothing built.
 TEST(Collimated, BadParametersAreLocatedErrors) {
     struct Case {
@@ -255,6 +351,11 @@ TEST(Collimated, BadParametersAreLocatedErrors) {
         {"\"float power\" 0", "\"power\" must be positive"},
         {"\"float scale\" -1", "\"scale\" must not be negative"},
         {"\"point3 from\" [0 0 1] \"point3 to\" [0 0 1]", "\"from\" and \"to\" must differ"},
+        {"\"string aperture\" \"square\"", "unknown \"aperture\" \"square\""},
+        {"\"string aperture\" \"rect\" \"float width\" 0", "\"width\" must be positive"},
+        {"\"string aperture\" \"rect\" \"float height\" -1", "\"height\" must be positive"},
+        {"\"string aperture\" \"rect\" \"float radius\" 0.1", "\"radius\" applies to the \"disc\" aperture only"},
+        {"\"float width\" 0.1", "\"width\" applies to the \"rect\" aperture only"},
     };
     for (const Case &c : cases) {
         std::string text = std::string("WorldBegin\nLightSource \"collimated\"\n    ") + c.params + "\n";
@@ -272,7 +373,7 @@ TEST(Collimated, BadParametersAreLocatedErrors) {
         LoadSceneText("beam_bad", "WorldBegin\nScale 1 2 1\nLightSource \"collimated\"\n");
         ADD_FAILURE() << "accepted a non-uniform scale";
     } catch (const SceneError &e) {
-        EXPECT_NE(e.Message().find("scales the disc unevenly"), std::string::npos) << e.Message();
+        EXPECT_NE(e.Message().find("scales the aperture unevenly"), std::string::npos) << e.Message();
         EXPECT_EQ(e.Loc().line, 3);
     }
     // A laser line of 532 nm, and a uniform scale (the radius scales with it).

@@ -371,7 +371,7 @@ struct Light {
     // with "filename" (NoIndex: the spectrum; else bilinear at the surface (u, 1 - v)).
     uint32_t image = NoIndex;
     uint32_t distribution = NoIndex;  // image infinite: index into SceneView::distributions2D
-    Vec3f sceneCenter;           // distant / infinite: bounding sphere of the scene
+    Vec3f sceneCenter;           // distant / infinite / collimated: bounding sphere of the scene
     Float sceneRadius = 0;
     // A sphere containing every point SampleLi can return (area, point, spot lights; filled by the
     // builder); boundRadius < 0: none (distant, infinite). regpath culls light samples with it.
@@ -383,11 +383,15 @@ struct Light {
     // interpolated linearly (lights/lights.h, ProfileValueAt).
     uint32_t profile = NoIndex;
     bool profileVertices = false;
-    // Collimated beam (Lucerna extension, lights/collimated.h): a disc of radius beamRadius at
-    // `position` whose normal `direction` is the beam's direction of travel; spectral irradiance
-    // E(y) = spectrum * scale * profile, profile uniform (beamWaist == 0) or gaussian
-    // exp(-2 rho^2 / beamWaist^2) (1/e^2 radius beamWaist), 0 outside the disc.
+    // Collimated beam (Lucerna extension, lights/collimated.h): an aperture at `position` whose
+    // normal `direction` is the beam's direction of travel, a disc of radius beamRadius
+    // (beamHalf.x == 0) or a rectangle of half sizes beamHalf along beamU and direction x beamU
+    // (beamRadius: its half diagonal); spectral irradiance E(y) = spectrum * scale * profile,
+    // profile uniform (beamWaist == 0) or gaussian exp(-2 rho^2 / beamWaist^2) (1/e^2 radius
+    // beamWaist, rho the distance from the axis), 0 outside the aperture.
     Float beamRadius = 0, beamWaist = 0;
+    Vec3f beamU;
+    Vec2f beamHalf;
     // Projection (pbrt-v4's ProjectionLight): light-space +z is the axis; direction w projects to
     // the screen point (w.x, w.y) / (w.z projectionTan) (projectionTan = tan(fov / 2)), inside the
     // window [-projectionScreen, projectionScreen] (the shorter image side spans [-1, 1]).

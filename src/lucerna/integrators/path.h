@@ -16,14 +16,15 @@ namespace lu {
 
 // The phase-function sampling of a medium vertex at p (wo towards the previous vertex): the next
 // ray and the record of this vertex; the phase function samples itself exactly (beta unchanged).
-LU_INLINE void SamplePhaseDirection(const Vec3f &p, const Vec3f &wo, Float g, Sampler &sampler, ScatterVertex &v,
-                                    Ray &ray) {
+LU_INLINE void SamplePhaseDirection(const Vec3f &p, const Vec3f &wo, Float g, bool beamRegions, Sampler &sampler,
+                                    ScatterVertex &v, Ray &ray) {
     Float pdf;
     Vec3f wi = SampleHenyeyGreenstein(wo, g, sampler.Get2D(), &pdf);
     v.ctx = LightSampleContext();
     v.ctx.p = p;
     v.pdfBsdfW = pdf;
     v.camera = v.specular = v.regularized = v.allSpecular = false;
+    v.beamRegions = beamRegions;
     // NEE (and MNEE) ran here: a refractive chain may start (as at a non-specular surface).
     v.chainVertices = 0;
     v.chainHash = 0;
@@ -62,6 +63,12 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- The medium along the ray ----
         if (medium != NoIndex) {
             inMedia = true;
+            // The beams' light scattered along this segment where it crosses their regions.
+            if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+                SampledSpectrum c = beta * BeamSegmentsLi(ray, tEnd, medium, r, lambda, sampler, scene, tracer, ps, st);
+                NoteBadValue(st, c, RejectCause::Medium, medium, depth);
+                L += c;
+            }
             Vec3f pScatter;
             MediumEvent ev = SampleMediumSegment(scene, medium, ray, tEnd, lambda, sampler, depth,
                                                  ps.maxDepth, beta, r, L, &pScatter);
@@ -79,11 +86,11 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 if (ps.strategy != LightStrategy::BSDFOnly) {
                     SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st,
                                                         ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0,
-                                                        BeamOneMinusCos(ps.reg));
+                                                        BeamOneMinusCos(ps.reg), UsesBeamSegments(ps, scene));
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
-                SamplePhaseDirection(pScatter, wo, g, sampler, prev, ray);
+                SamplePhaseDirection(pScatter, wo, g, UsesBeamSegments(ps, scene), sampler, prev, ray);
                 crossedBeam = NoIndex;
                 r.l = r.lChain = r.u;
                 if (!beta.IsFinite()) {

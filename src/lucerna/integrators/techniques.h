@@ -24,6 +24,7 @@ struct PathSettings {
     LightStrategy strategy = LightStrategy::MIS;
     RegularizationParams reg;   // this pass's kernel
     bool mnee = false;          // manifold NEE through refractive chains (integrators/mnee.h)
+    bool beamSegments = false;  // collimated beams in media: the beam-segment technique (integrators/collimated.h)
 };
 
 // MNEE applies in this scene: the setting is on and some material can refract or pass light.
@@ -217,12 +218,17 @@ template <typename Tracer, typename Scatter>
 LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               int mneeBudget = 0, Float beamOneMinusCos = 0) {
+                               int mneeBudget = 0, Float beamOneMinusCos = 0, bool beamRegions = false) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
+    // A medium vertex inside a beam's region leaves that beam to the beam-segment technique
+    // (integrators/collimated.h).
+    if (beamRegions && light.kind == LightKind::Collimated &&
+        InBeamRegion(light, ctx.p, BeamRegionRadius(light, beamOneMinusCos)))
+        return SampledSpectrum(0);
     LightLiSample ls;
     if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls, beamOneMinusCos))
         return SampledSpectrum(0);
@@ -269,6 +275,8 @@ struct ScatterVertex {
     bool regularized = false;  // ... and the regularized connection to area/infinite lights ran there,
     Float candidatePmf = 0;    // ... choosing among lights whose LightPMFs sum to this
     bool allSpecular = true;   // every vertex of the path so far (from the camera) sampled a Dirac lobe
+    bool beamRegions = false;  // a medium vertex where the beam-segment technique takes the beams'
+                               // light inside their regions (integrators/collimated.h)
     // MNEE: the chain of smooth transmissions since the last non-specular vertex x0, where NEE ran.
     int8_t chainVertices = -1;      // refractive vertices since x0; -1: no such chain (no x0 yet, a
                                     // reflection or another lobe since, or more than MaxMneeVertices)
@@ -537,6 +545,7 @@ LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsd
     beta *= bs.f * (AbsDot(bs.wi, si.ns) / bs.pdf);
     v.pdfBsdfW = bs.pdfIsProportional ? bsdf.PDF(si.wo, bs.wi) : bs.pdf;
     v.camera = false;
+    v.beamRegions = false;
     v.specular = bs.IsSpecular();
     if (!bsdf.IsSpecular()) {   // NEE (and MNEE) ran here: a chain may start
         v.chainVertices = v.specular ? -1 : 0;

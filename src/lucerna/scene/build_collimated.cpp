@@ -1,6 +1,7 @@
-// Lucerna scene builder: LightSource "collimated" (a Lucerna extension, docs/lights.md): a disc
-// emitting a collimated beam (laser, collimated LED) with a uniform or gaussian irradiance
+// Lucerna scene builder: LightSource "collimated" (a Lucerna extension, docs/lights.md): a disc or
+// a rectangle emitting a collimated beam (laser, collimated LED) with a uniform or gaussian irradiance
 // profile, a spectrum or a laser line, normalized to "power" watts or scaled as pbrt-v4's lights.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -62,8 +63,13 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
     Vec3f from = p.GetOnePoint3f("from").value_or(Vec3f(0, 0, 0));
     Vec3f to = p.GetOnePoint3f("to").value_or(Vec3f(0, 0, 1));
     if (!(LengthSquared(to - from) > 0)) Fail(ParamLoc(p, "to", e.loc), "collimated light: \"from\" and \"to\" must differ");
-    Frame f = Frame::FromZ(Normalize(to - from));
-    l.renderFromLight = e.renderFromObject * TranslateTransform(from) * FromColumns(f.x, f.y, f.z);
+    // The aperture's frame: z along the beam, x the light-space x axis made perpendicular to it
+    // (the y axis when the beam runs along x), so that a rectangle's "width" lies along x.
+    Vec3f z = Normalize(to - from);
+    Vec3f x = Vec3f(1, 0, 0) - z * z.x;
+    if (LengthSquared(x) < 1e-6f) x = Vec3f(0, 1, 0) - z * z.y;
+    x = Normalize(x);
+    l.renderFromLight = e.renderFromObject * TranslateTransform(from) * FromColumns(x, Cross(z, x), z);
     l.position = l.renderFromLight.ApplyPoint(Vec3f(0, 0, 0));
     Vec3f ax = l.renderFromLight.ApplyVector(Vec3f(1, 0, 0)), ay = l.renderFromLight.ApplyVector(Vec3f(0, 1, 0));
     Vec3f az = l.renderFromLight.ApplyVector(Vec3f(0, 0, 1));
@@ -71,19 +77,40 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
     if (!(sx > 0 && sy > 0 && sz > 0) || !std::isfinite(sx) || !std::isfinite(sy) || !std::isfinite(sz) ||
         !std::isfinite(l.position.x + l.position.y + l.position.z))
         Fail(e.loc, "collimated light: the transformation is singular");
-    // The disc stays a disc perpendicular to the beam only under rotations, translations and
-    // uniform scales in its plane.
+    // The aperture keeps its shape perpendicular to the beam only under rotations, translations
+    // and uniform scales in its plane.
     if (std::abs(sx - sy) > 1e-4f * sx || std::abs(Dot(ax, az)) > 1e-4f * sx * sz || std::abs(Dot(ay, az)) > 1e-4f * sy * sz ||
         std::abs(Dot(ax, ay)) > 1e-4f * sx * sy)
-        Fail(e.loc, "collimated light: the transformation shears or scales the disc unevenly (it must stay a disc "
-                    "perpendicular to the beam)");
+        Fail(e.loc, "collimated light: the transformation shears or scales the aperture unevenly (it must keep its "
+                    "shape perpendicular to the beam)");
     l.direction = az / sz;
+    l.beamU = ax / sx;
+    // ---- Aperture: a disc of "radius", or a rectangle of "width" x "height" (light-space x, y) ----
+    std::string aperture = p.GetOneString("aperture", "disc");
+    double radius = 0, size = 0;
+    if (aperture == "disc") {
+        for (const char *name : {"width", "height"})
+            if (p.Has(name)) Fail(ParamLoc(p, name, e.loc), std::string("collimated light: ") + Quoted(name) + " applies to "
+                                                           "the \"rect\" aperture only (the disc has \"radius\")");
+        radius = PositiveFloat(p, "radius", 0.001, e.loc);
+        size = radius;
+    } else if (aperture == "rect") {
+        if (p.Has("radius")) Fail(ParamLoc(p, "radius", e.loc), "collimated light: \"radius\" applies to the \"disc\" "
+                                                               "aperture only (the rectangle has \"width\" and \"height\")");
+        double width = PositiveFloat(p, "width", 0.002, e.loc);
+        double height = PositiveFloat(p, "height", width, e.loc);
+        l.beamHalf = Vec2f(Float(width / 2 * sx), Float(height / 2 * sx));
+        radius = std::sqrt(width * width + height * height) / 2;   // the half diagonal (bounds)
+        size = std::min(width, height) / 2;
+    } else {
+        Fail(ParamLoc(p, "aperture", e.loc), "collimated light: unknown \"aperture\" " + Quoted(aperture) +
+                                                 " (expected \"disc\" or \"rect\")");
+    }
     // ---- Profile ----
-    double radius = PositiveFloat(p, "radius", 0.001, e.loc);
     std::string profile = p.GetOneString("profile", "uniform");
     double waist = 0;
     if (profile == "gaussian") {
-        waist = PositiveFloat(p, "waist", radius, e.loc);
+        waist = PositiveFloat(p, "waist", size, e.loc);
     } else if (profile == "uniform") {
         if (p.Has("waist")) Fail(ParamLoc(p, "waist", e.loc), "collimated light: \"waist\" applies to the \"gaussian\" profile only");
     } else {
@@ -96,8 +123,10 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
     double scale = p.GetOneFloat("scale", 1);
     if (!(scale >= 0) || !std::isfinite(scale))
         Fail(ParamLoc(p, "scale", e.loc), owner + ": \"scale\" must not be negative (got " + FormatNumber(scale) + ")");
-    Float area = BeamProfileIntegral(l.beamRadius, l.beamWaist);
-    if (!(area > 0)) Fail(ParamLoc(p, "radius", e.loc), "collimated light: the disc is too small (zero area in float)");
+    Float area = BeamProfileIntegral(l);
+    if (!(area > 0))
+        Fail(ParamLoc(p, BeamIsRectangle(l) ? "width" : "radius", e.loc),
+             "collimated light: the aperture is too small (zero area in float)");
     if (p.Has("power")) {
         double P = PositiveFloat(p, "power", 1, e.loc);
         double integral = SpectrumIntegral(ctx, l.spectrum);

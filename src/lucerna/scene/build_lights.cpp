@@ -476,7 +476,7 @@ void LightBoundingSphere(const Light &l, const SceneView &s, Vec3f *center, Floa
         *radius = 0;
         return;
     }
-    if (l.kind == LightKind::Collimated) {   // the disc
+    if (l.kind == LightKind::Collimated) {   // the aperture (beamRadius: a rectangle's half diagonal)
         *center = l.position;
         *radius = l.beamRadius;
         return;
@@ -534,7 +534,8 @@ void FinishLights(BuildContext &ctx) {
     }
     SceneView view = s.View();
     for (Light &l : s.lights) {
-        if (l.kind == LightKind::Distant || l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite) {
+        if (l.kind == LightKind::Distant || l.kind == LightKind::UniformInfinite || l.kind == LightKind::ImageInfinite ||
+            l.kind == LightKind::Collimated) {   // beams: their reach in a medium (BeamRegionInterval)
             l.sceneCenter = center;
             l.sceneRadius = radius;
         }

@@ -14,6 +14,7 @@ PathSettings RenderSettings::ForPass(uint32_t pass) const {
     ps.strategy = lightStrategy;
     ps.reg = RegularizationForPass(Regularizes(), Float(regRadius), Float(regAngle * M_PI / 180), Float(regLambda), pass);
     ps.mnee = Regularizes() && mnee;
+    ps.beamSegments = Regularizes() && beamSegments;
     return ps;
 }
 
@@ -123,6 +124,7 @@ void ForEachSetting(S &s, F &&f) {
     f(info[i++], s.regLambda, range(0.0, 1.0));
     f(info[i++], s.regAngle, range(0.0, 90.0, true));
     f(info[i++], s.mnee, any);
+    f(info[i++], s.beamSegments, any);
     f(info[i++], s.seed, any);
     f(info[i++], s.spp, range(1, 1 << 24));
     f(info[i++], s.timeLimit, range(0.0, 1e9));
@@ -143,6 +145,7 @@ const std::vector<SettingInfo> &RenderSettingInfos() {
         {"reg-lambda", "regpath: shrink exponent lambda, r_N = r0 N^-lambda (default 1/6; 1/8 in scenes with a collimated light)", true},
         {"reg-angle", "regpath: initial angle sigma0 in degrees for lights at infinity (default 2)", true},
         {"mnee", "regpath: manifold next-event estimation through refractive chains (true or false; default true)", true},
+        {"beam-segments", "regpath: collimated beams in media sampled along ray segments (true or false; default true)", true},
         {"seed", "random seed (default: the scene's Sampler \"seed\", else 0)", true},
         {"spp", "samples per pixel = passes (default: the scene's Sampler \"pixelsamples\")", false},
         {"time", "time budget in seconds: stop at the first pass boundary after it", false},

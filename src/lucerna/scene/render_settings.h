@@ -26,6 +26,7 @@ struct RenderSettings {
     double regLambda = 1.0 / 6;             // "lambda": r_N = r0 N^-lambda
     double regAngle = 2;                    // "angle": sigma0 in degrees, for lights at infinity
     bool mnee = true;                       // "mnee": regpath adds manifold NEE through refractive chains
+    bool beamSegments = true;               // "beam-segments": regpath samples beams in media along ray segments
     // ---- Sampling: the scene's Sampler directive ----
     uint32_t seed = 0;                      // "seed"
     int spp = 16;                           // passes to render; default "pixelsamples"
