@@ -75,13 +75,16 @@ class IESReader {
             std::filesystem::path tp(p.tilt);
             if (tp.is_relative()) tp = std::filesystem::path(*file_).parent_path() / tp;
             p.tiltFile = tp.string();
-            std::ifstream in(p.tiltFile, std::ios::binary);
-            if (!in) Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": cannot open the tilt file \"" + p.tiltFile + "\"");
+            std::error_code ec;
+            std::ifstream in;
+            if (std::filesystem::is_regular_file(tp, ec)) in.open(p.tiltFile, std::ios::binary);   // not a device or folder
+            if (!in.is_open()) Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": cannot open the tilt file \"" + p.tiltFile + "\"");
+            if (std::filesystem::file_size(tp, ec) > (uintmax_t(1) << 24))
+                Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": the tilt file \"" + p.tiltFile + "\" is over 16 MiB");
             std::ostringstream s;
             s << in.rdbuf();
             std::string text = s.str();
-            if (in.bad() || text.size() > (size_t(1) << 24))
-                Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": cannot read the tilt file \"" + p.tiltFile + "\" (read error or over 16 MiB)");
+            if (in.bad()) Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": read error in the tilt file \"" + p.tiltFile + "\"");
             IESReader tiltReader(text, p.tiltFile,
                                  "tilt file of " + *file_ + ":" + std::to_string(tiltLineNo) + (context_.empty() ? "" : ", " + context_));
             tiltReader.SplitLines();
