@@ -140,7 +140,7 @@ class IESReader {
         double h0 = p.horizontal.front(), h1 = p.horizontal.back();
         int hLine = angleLine_.back();
         if (!typeC) {
-            // LM-63-2002 4.20: 0..90 for a luminaire laterally symmetric about its vertical reference
+            // LM-63-2002, section 4: 0..90 for a luminaire laterally symmetric about its vertical reference
             // plane, -90..90 otherwise.
             if (nh >= 2 && h0 == 0 && h1 == 90) p.symmetry = IESSymmetry::Lateral;
             else if (nh >= 2 && h0 == -90 && h1 == 90) p.symmetry = IESSymmetry::LateralFull;
@@ -187,7 +187,7 @@ class IESReader {
 
   private:
     // Lamp-to-luminaire geometry, the number of tilt angles, the angles and their multiplying factors
-    // (LM-63-2002, 4.11-4.15), from this reader's numbers: those after TILT=INCLUDE or a tilt file's.
+    // (LM-63-2002, section 4), from this reader's numbers: those after TILT=INCLUDE or a tilt file's.
     void ReadTilt(IESProfile &p, const std::string &where) {
         p.tiltGeometry = Int("the lamp-to-luminaire geometry" + where);
         if (p.tiltGeometry < 1 || p.tiltGeometry > 3)
