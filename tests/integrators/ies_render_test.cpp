@@ -1,5 +1,6 @@
 // Rendered irradiance under IES luminaires: an orthographic camera looks down at a diffuse plane
-// lit by a cosine and a batwing IES profile (goniometric light, point light with "iesfile"); the
+// lit by a cosine and a batwing IES profile (goniometric light, point light with "iesfile"; the
+// cosine also as type B and type A webs, whose photometric axis is the type C nadir); the
 // image, averaged over rings of pixels, follows E = I(theta, phi) cos(theta) / d^2 within 1%
 // (relative to the ring under the light, so that albedo and color conversion cancel).
 #include <gtest/gtest.h>
@@ -27,6 +28,19 @@ std::string IESText(const std::vector<double> &h, const std::function<double(dou
     for (double hj : h) {
         for (int i = 0; i <= 36; ++i) o << intensity(i * 2.5, hj) << (i < 36 ? " " : "\n");
     }
+    return o.str();
+}
+
+// A type B (2) or A (3) file of I = 800 cos(angle from the photometric axis) = 800 cos(v) cos(h),
+// vertical -90-90 and horizontal 0-90 (laterally symmetric), 2.5 degree steps.
+std::string CosineTextAB(int type) {
+    std::ostringstream o;
+    o.precision(10);
+    o << "IESNA:LM-63-2002\n[TEST] lucerna render test\nTILT=NONE\n1 -1 1 73 37 " << type << " 2 0 0 0\n1 1 0\n";
+    for (int i = 0; i <= 72; ++i) o << -90 + i * 2.5 << (i < 72 ? " " : "\n");
+    for (int j = 0; j <= 36; ++j) o << j * 2.5 << (j < 36 ? " " : "\n");
+    for (int j = 0; j <= 36; ++j)
+        for (int i = 0; i <= 72; ++i) o << 800 * std::cos(Rad(-90 + i * 2.5)) * std::cos(Rad(j * 2.5)) << (i < 72 ? " " : "\n");
     return o.str();
 }
 
@@ -88,6 +102,13 @@ TEST(IESRender, CosineLuminaireLightsThePlaneAsCosineToTheFourth) {
     ExpectRenderedIrradiance("ies_render_cos", IESText({0}, [](double v, double) { return 800 * std::cos(Rad(v)); }),
                              "LightSource \"goniometric\" \"string filename\" \"lum.ies\"",
                              [](double v, double) { return 800 * std::cos(Rad(v)); });
+}
+
+TEST(IESRender, TypeBAndTypeACosineLuminaires) {
+    for (int type : {2, 3})
+        ExpectRenderedIrradiance(type == 2 ? "ies_render_type_b" : "ies_render_type_a", CosineTextAB(type),
+                                 "LightSource \"point\" \"string iesfile\" \"lum.ies\"",
+                                 [](double v, double) { return 800 * std::cos(Rad(v)); });
 }
 
 TEST(IESRender, BatwingLuminaire) {

@@ -38,13 +38,14 @@ struct IESFile {
     std::vector<double> vertical, horizontal;
     std::function<double(double, double)> candela;   // (vertical, horizontal) degrees
     double multiplier = 1;
+    int type = 1;                                    // 1: C, 2: B, 3: A
     std::string tilt = "TILT=NONE";
 
     std::vector<std::string> Lines() const {
         std::vector<std::string> l = {"IESNA:LM-63-2002", "[TEST] lucerna", "[MANUFAC] none", tilt};
         std::ostringstream o;
         o.precision(10);
-        o << "1 -1 " << multiplier << " " << vertical.size() << " " << horizontal.size() << " 1 2 0 0 0";
+        o << "1 -1 " << multiplier << " " << vertical.size() << " " << horizontal.size() << " " << type << " 2 0 0 0";
         l.push_back(o.str());
         l.push_back("1.0 1.0 0");
         auto join = [](const std::vector<double> &v) {
@@ -91,6 +92,34 @@ IESFile BatwingFile() {
     f.vertical = Range(0, 90, 2.5);
     f.horizontal = Range(0, 90, 5);
     f.candela = Batwing;
+    return f;
+}
+
+// ---- Types B and A: one distribution over the forward hemisphere, in both angle systems ----
+
+// g over directions d of the IES frame (docs/lights.md: the photometric axis (0, 0) is -z,
+// vertical +90 is +x, horizontal +90 is +y): linear in d, so that every web samples it smoothly;
+// 0 behind the luminaire (d.z > 0), where types A and B have no angles.
+double G_AB(double x, double y, double z, bool lateralTerm = true) {
+    return z > 0 ? 0 : 200 + 40 * x + (lateralTerm ? 25 * y : 0) - 100 * z;
+}
+// The direction of (v, h) written out from LM-75's definitions, independently of the reader.
+// Type B: planes of constant v through the lateral (y) axis, h the elevation towards +y out of them.
+// Type A: planes of constant h through the vertical (x) axis, v the elevation towards +x.
+Vec3f DirectionAB(int type, double v, double h) {
+    double cv = std::cos(Rad(v)), sv = std::sin(Rad(v)), ch = std::cos(Rad(h)), sh = std::sin(Rad(h));
+    if (type == 2) return Vec3f(Float(ch * sv), Float(sh), Float(-ch * cv));
+    return Vec3f(Float(sv), Float(cv * sh), Float(-cv * ch));
+}
+IESFile FileAB(int type, bool lateralSymmetric) {
+    IESFile f;
+    f.type = type;
+    f.vertical = Range(-90, 90, 2.5);
+    f.horizontal = Range(lateralSymmetric ? 0 : -90, 90, 2.5);
+    f.candela = [type, lateralSymmetric](double v, double h) {
+        Vec3f d = DirectionAB(type, v, h);
+        return G_AB(d.x, d.y, d.z, !lateralSymmetric);
+    };
     return f;
 }
 
@@ -197,6 +226,124 @@ TEST(IESReader, TiltIncludeAndOlderFormats) {
     EXPECT_NEAR(ParseIES(JoinLines(l), "comma.ies", "").Evaluate(60, 0), 500, 1e-6);
 }
 
+// Types B and A: Evaluate at off-grid angles reproduces g; the angles of a direction invert
+// DirectionAB; a laterally symmetric (0-90) web equals the full (-90-90) one of the same function.
+TEST(IESReader, TypesBAndAEvaluateTheWeb) {
+    for (int type : {2, 3}) {
+        SCOPED_TRACE(type);
+        IESProfile p = ParseIES(JoinLines(FileAB(type, false).Lines()), "ab.ies", "");
+        EXPECT_EQ(p.photometricType, type);
+        EXPECT_EQ(p.symmetry, IESSymmetry::LateralFull);
+        double worst = 0, worstAngles = 0;
+        for (double v = -89.3; v < 90; v += 3.7)
+            for (double h = -89.1; h < 90; h += 4.3) {
+                Vec3f d = DirectionAB(type, v, h);
+                worst = std::max(worst, std::abs(p.Evaluate(v, h) - G_AB(d.x, d.y, d.z)));
+                double v2, h2;
+                IESAnglesOfDirection(d.x, d.y, d.z, &v2, &h2, type);
+                worstAngles = std::max({worstAngles, std::abs(v2 - v), std::abs(h2 - h)});
+            }
+        EXPECT_LT(worst, 0.1);   // values ~200, 2.5 degree steps: ~0.03
+        EXPECT_LT(worstAngles, 2e-3);   // float directions near the poles
+        EXPECT_EQ(p.Evaluate(95, 0), 0);    // outside [-90, 90]: dark
+        EXPECT_EQ(p.Evaluate(0, -100), 0);
+        double v, h;   // behind the luminaire: outside the web's angles
+        IESAnglesOfDirection(0.1f, 0.2f, 0.97f, &v, &h, type);
+        EXPECT_EQ(p.Evaluate(v, h), 0) << v << " " << h;
+
+        IESProfile full = ParseIES(JoinLines([&] { IESFile f = FileAB(type, false); f.candela = FileAB(type, true).candela; return f; }().Lines()), "full.ies", "");
+        IESProfile half = ParseIES(JoinLines(FileAB(type, true).Lines()), "half.ies", "");
+        EXPECT_EQ(half.symmetry, IESSymmetry::Lateral);
+        double diff = 0;
+        for (double v = -90; v <= 90; v += 1.3)
+            for (double h = -90; h <= 90; h += 1.7) diff = std::max(diff, std::abs(full.Evaluate(v, h) - half.Evaluate(v, h)));
+        EXPECT_LT(diff, 1e-9);
+        std::vector<float> a = IESEqualAreaTable(full, 64), b = IESEqualAreaTable(half, 64);
+        double tdiff = 0;
+        for (size_t i = 0; i < a.size(); ++i) tdiff = std::max(tdiff, double(std::abs(a[i] - b[i])));
+        EXPECT_LT(tdiff, 1e-3);
+        EXPECT_TRUE(Contains(half.Describe(), std::string("type ") + (type == 2 ? "B" : "A") +
+                                                  ", TILT=NONE, 73 vertical x 37 horizontal angles (horizontal 0 to 90, "
+                                                  "laterally symmetric), vertical -90 to 90"))
+            << half.Describe();
+    }
+}
+
+// ---- TILT: the factor of the tilt table at "iestilt", included or in a separate file ----
+
+std::vector<std::string> TiltedCosine(const std::string &tiltLine, bool include) {
+    std::vector<std::string> l = CosineFile().Lines();
+    l[3] = tiltLine;
+    if (include) l.insert(l.begin() + 4, {"1", "3", "0 45 90", "1.0 0.8 0.5"});
+    return l;
+}
+
+TEST(IESTilt, FactorInterpolatedInTheTiltTable) {
+    IESProfile p = ParseIES(JoinLines(TiltedCosine("TILT=INCLUDE", true)), "tilt.ies", "");
+    EXPECT_EQ(p.tiltGeometry, 1);
+    double f = 0;
+    ASSERT_TRUE(p.TiltFactorAt(30, &f));
+    EXPECT_NEAR(f, 1 - 0.2 * 30 / 45, 1e-12);
+    ASSERT_TRUE(p.TiltFactorAt(60, &f));
+    EXPECT_NEAR(f, 0.8 - 0.3 * 15 / 45, 1e-12);
+    ASSERT_TRUE(p.TiltFactorAt(90, &f));
+    EXPECT_NEAR(f, 0.5, 1e-12);
+    EXPECT_FALSE(p.TiltFactorAt(90.5, &f));
+    EXPECT_FALSE(p.TiltFactorAt(-1, &f));
+    EXPECT_NEAR(p.Evaluate(20, 0), 1000 * std::cos(Rad(20)), 1e-6);   // not tilted: as measured (10 digits)
+    p.SetTilt(30);
+    EXPECT_NEAR(p.Evaluate(20, 0), (1 - 0.2 * 30 / 45) * 1000 * std::cos(Rad(20)), 1e-6);
+    EXPECT_NEAR(p.MaxCandela(), (1 - 0.2 * 30 / 45) * 1000, 1e-9);
+    EXPECT_TRUE(Contains(p.Describe(), "type C, TILT=INCLUDE (lamp geometry 1, 3 tilt angles 0-90; tilted 30 degrees: factor 0.866"))
+        << p.Describe();
+    EXPECT_FALSE(ParseIES(JoinLines(CosineFile().Lines()), "none.ies", "").TiltFactorAt(0, &f));
+}
+
+TEST(IESTilt, IestiltOnLightsAndTiltFiles) {
+    std::string dir = test::TempDir("ies_tilt");
+    WriteText(dir + "/inc.ies", JoinLines(TiltedCosine("TILT=INCLUDE", true)));
+    std::filesystem::create_directories(dir + "/lum");
+    WriteText(dir + "/lum/file.ies", JoinLines(TiltedCosine("TILT=lamp.tlt", false)));   // relative to lum/
+    WriteText(dir + "/lum/lamp.tlt", "1\n3\n0 45 90\n1.0 0.8 0.5\n");
+    WriteText(dir + "/cos.ies", JoinLines(CosineFile().Lines()));
+    IESProfile inc = ReadIES(dir + "/inc.ies", FileLoc{}, ""), file = ReadIES(dir + "/lum/file.ies", FileLoc{}, "");
+    EXPECT_EQ(file.tilt, "lamp.tlt");
+    EXPECT_EQ(file.tiltFile, dir + "/lum/lamp.tlt");
+    EXPECT_EQ(file.tiltGeometry, inc.tiltGeometry);
+    EXPECT_EQ(file.tiltAngles, inc.tiltAngles);
+    EXPECT_EQ(file.tiltFactors, inc.tiltFactors);
+    const double want = (1 - 0.2 * 30 / 45) * 1000;
+    for (std::string ies : {"inc.ies", "lum/file.ies"}) {
+        SCOPED_TRACE(ies);
+        for (std::string light : {"point", "goniometric"}) {
+            std::string ref = "LightSource \"" + light + "\" \"string " + (light == "point" ? "iesfile" : "filename") + "\" \"" + ies + "\"";
+            auto s = LoadWorld(dir, ref + " \"float iestilt\" 30\n" + ref + "\n");
+            ASSERT_EQ(s->lights.size(), 2u);
+            EXPECT_NEAR(Candela(*s, 0, Vec3f(0, -2, 0)), want, 0.5);   // tilted 30 degrees
+            EXPECT_NEAR(Candela(*s, 1, Vec3f(0, -2, 0)), 1000, 0.5);   // no iestilt: as measured
+        }
+    }
+    auto s = LoadWorld(dir, "LightSource \"spot\" \"point3 to\" [0 -1 0] \"float coneangle\" 60 \"string iesfile\" \"lum/file.ies\" "
+                            "\"float iestilt\" 90\n");
+    EXPECT_NEAR(Candela(*s, 0, Vec3f(0, -2, 0)), 500, 0.5);
+    EXPECT_NE(std::find(s->inputFiles.begin(), s->inputFiles.end(), dir + "/lum/lamp.tlt"), s->inputFiles.end());
+    auto error = [&](const std::string &world) -> std::string {
+        try {
+            LoadWorld(dir, world);
+        } catch (const SceneError &e) {
+            EXPECT_EQ(e.Loc().Filename(), dir + "/scene.pbrt") << e.Format();
+            EXPECT_EQ(e.Loc().line, 4) << e.Format();
+            return e.Message();
+        }
+        ADD_FAILURE() << "no error for " << world;
+        return "";
+    };
+    EXPECT_TRUE(Contains(error("LightSource \"point\" \"string iesfile\" \"cos.ies\" \"float iestilt\" 0\n"),
+                         "\"iestilt\" is meaningless: \"cos.ies\" has TILT=NONE"));
+    EXPECT_TRUE(Contains(error("LightSource \"point\" \"string iesfile\" \"inc.ies\" \"float iestilt\" 95\n"),
+                         "\"iestilt\" 95 is outside the tilt angles of \"inc.ies\" (0-90 degrees"));
+}
+
 // ---- The equal-area table and its bilinear lookup ----
 
 TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
@@ -232,6 +379,54 @@ TEST(IESTable, BilinearLookupMatchesTheWebEverywhere) {
     // Measured: 6e-5 (a texel-centered bilinear table: 2.4e-3, along the map's folds).
     EXPECT_LT(worst, 1e-3);
     std::printf("vertex table vs IES evaluation: worst relative difference %.2e\n", worst);
+}
+
+// Types B and A: the vertex table against g at directions all over the sphere (not via the
+// reader's angles), and the sides in the light's frame: vertical +90 towards +x, horizontal +90
+// towards +z (after the y/z swap), the photometric axis -y, nothing behind (+y).
+TEST(IESTable, TypesBAndAAxesAndTable) {
+    for (int type : {2, 3}) {
+        SCOPED_TRACE(type);
+        std::string dir = test::TempDir(std::string("ies_table_ab") + char('0' + type));
+        WriteText(dir + "/ab.ies", JoinLines(FileAB(type, false).Lines()));
+        auto s = LoadWorld(dir, "LightSource \"goniometric\" \"string filename\" \"ab.ies\"\n");
+        SceneView v = s->View();
+        const Light &l = v.lights[0];
+        double worst = 0;
+        int n = 0;
+        for (int i = 0; i < 4000; ++i) {
+            Float a = Float(i) * 0.61803398f, b = (Float(i) + 0.5f) / 4000;
+            Vec3f w = EqualAreaSquareToSphere(Vec2f(a - std::floor(a), b));
+            if (std::abs(w.z) < 0.02f) continue;   // the lit hemisphere's edge: a step, within a cell
+            double want = G_AB(w.x, w.y, w.z), got = ProfileValue(l, v, w);
+            worst = std::max(worst, want == 0 ? std::abs(got) : std::abs(got / want - 1));
+            ++n;
+        }
+        EXPECT_GT(n, 3800);
+        EXPECT_LT(worst, 1e-3);
+        std::printf("type %c: vertex table vs g: worst relative difference %.2e over %d directions\n", type == 2 ? 'B' : 'A',
+                    worst, n);
+        const double r = std::sqrt(0.5);
+        auto light = [&](double x, double y, double z) { return Candela(*s, 0, Vec3f(Float(x), Float(y), Float(z)) * 4); };
+        EXPECT_NEAR(light(0, -1, 0), 300, 0.1);                                   // (0, 0): light -y
+        EXPECT_NEAR(light(0, -r, r), 200 + 25 * r + 100 * r, 0.1);               // horizontal +45: +z
+        EXPECT_NEAR(light(0, -r, -r), 200 - 25 * r + 100 * r, 0.1);
+        EXPECT_NEAR(light(r, -r, 0), 200 + 40 * r + 100 * r, 0.1);               // vertical +45: +x
+        EXPECT_NEAR(light(-r, -r, 0), 200 - 40 * r + 100 * r, 0.1);
+        EXPECT_EQ(light(0, 1, 0), 0);
+        EXPECT_EQ(light(0.3, 0.9, 0.2), 0);
+        // A lobe at horizontal +30 (vertical 0) lands on the +z side: cos(30) (-y) + sin(30) (+z).
+        IESFile f = FileAB(type, false);
+        f.candela = [](double v, double h) { return 10 + 1000 * std::exp(-((h - 30) * (h - 30) + v * v) / 50); };
+        WriteText(dir + "/lobe.ies", JoinLines(f.Lines()));
+        auto lobe = LoadWorld(dir, "LightSource \"goniometric\" \"string filename\" \"lobe.ies\"\n");
+        double plus = Candela(*lobe, 0, Vec3f(0, -Float(std::cos(Rad(30))), Float(std::sin(Rad(30)))) * 3);
+        double minus = Candela(*lobe, 0, Vec3f(0, -Float(std::cos(Rad(30))), -Float(std::sin(Rad(30)))) * 3);
+        double up = Candela(*lobe, 0, Vec3f(Float(std::sin(Rad(30))), -Float(std::cos(Rad(30))), 0) * 3);
+        EXPECT_NEAR(plus, 1010, 10);   // the peak, in 0.4 degree table cells: measured 1003.6
+        EXPECT_NEAR(minus, 10, 0.5);
+        EXPECT_LT(up, 12);
+    }
 }
 
 // ---- Irradiance on a plane below the luminaire: E = I(theta, phi) cos(theta) / d^2 ----
@@ -447,6 +642,7 @@ struct IESErrorCase {
     std::function<void(std::vector<std::string> &)> edit;
     int line;            // 0: the last line of the edited file
     const char *needle;
+    const char *tiltText = nullptr;   // written to lamp.tlt (the edit says TILT=lamp.tlt): the error is there
 };
 
 class MalformedIES : public ::testing::TestWithParam<IESErrorCase> {};
@@ -465,23 +661,26 @@ TEST_P(MalformedIES, IsAnErrorAtFileAndLine) {
         }();
     c.edit(lines);
     WriteText(dir + "/bad.ies", JoinLines(lines));
+    if (c.tiltText) WriteText(dir + "/lamp.tlt", c.tiltText);
+    const std::string file = dir + (c.tiltText ? "/lamp.tlt" : "/bad.ies");
     int line = c.line ? c.line : int(lines.size());
     std::string world = "AttributeBegin\nLightSource \"goniometric\" \"string filename\" \"bad.ies\"\nAttributeEnd\n";
     try {
         LoadWorld(dir, world);
         ADD_FAILURE() << "no error";
     } catch (const SceneError &e) {
-        EXPECT_EQ(e.Loc().Filename(), dir + "/bad.ies") << e.Format();
+        EXPECT_EQ(e.Loc().Filename(), file) << e.Format();
         EXPECT_EQ(e.Loc().line, line) << e.Format();
         EXPECT_TRUE(Contains(e.Message(), c.needle)) << e.Message();
         EXPECT_TRUE(Contains(e.Message(), "scene.pbrt:5:")) << e.Message();   // the LightSource statement
-        EXPECT_TRUE(Contains(e.Format(), dir + "/bad.ies:" + std::to_string(line) + ": error: ")) << e.Format();
+        EXPECT_TRUE(Contains(e.Format(), file + ":" + std::to_string(line) + ": error: ")) << e.Format();
+        if (c.tiltText) EXPECT_TRUE(Contains(e.Message(), "tilt file of " + dir + "/bad.ies:4")) << e.Message();
     }
 }
 
 const IESErrorCase kIESErrors[] = {
     {"MissingTilt", [](auto &l) { l.erase(l.begin() + 3); }, 0, "no \"TILT=\" line"},
-    {"TiltFile", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 4, "separate file"},
+    {"TiltFileMissing", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 4, "cannot open the tilt file \""},
     {"ExtraNumbers", [](auto &l) { l.push_back("7 8"); }, 10, "more number(s) after the last candela value"},
     {"Truncated", [](auto &l) { l.back() = l.back().substr(0, l.back().rfind(' ')); }, 9, "ends after 36 of the 37 candela values"},
     {"TruncatedHeader", [](auto &l) { l.resize(5); l[4] = "1 -1 1 37"; }, 5, "ends before the number of horizontal angles"},
@@ -495,7 +694,38 @@ const IESErrorCase kIESErrors[] = {
     {"NotANumber", [](auto &l) { l[8] = "12x" + l[8].substr(l[8].find(' ')); }, 9, "\"12x\" (not a number)"},
     {"CountMismatch", [](auto &l) { l[4] = "1 -1 1 38 1 1 2 0 0 0"; l[6] += " 92.5"; }, 9,
      "ends after 37 of the 38 candela values (38 vertical x 1 horizontal angles)"},
-    {"TypeB", [](auto &l) { l[4] = "1 -1 1 37 1 2 2 0 0 0"; }, 5, "photometric type B (2) is not supported"},
+    {"PhotometricType", [](auto &l) { l[4] = "1 -1 1 37 1 4 2 0 0 0"; }, 5, "must be 1 (C), 2 (B) or 3 (A) (got 4)"},
+    {"TypeCVerticalNegative", [](auto &l) { l[6] = "-2.5" + l[6].substr(l[6].find(' ')); }, 7, "vertical angle -2.5 is outside [0, 180] degrees (type C)"},
+    // Types B and A: vertical and horizontal angles in [-90, 90]; horizontal -90..90 or 0..90.
+    {"TypeBVerticalRange", [](auto &l) { l = FileAB(2, false).Lines(); l[6] = "-92.5" + l[6].substr(l[6].find(' ')); }, 7,
+     "vertical angle -92.5 is outside [-90, 90] degrees (type B)"},
+    {"TypeAVertical180", [](auto &l) { IESFile f = FileAB(3, true); f.vertical = Range(0, 180, 5); l = f.Lines(); }, 7,
+     "vertical angle 95 is outside [-90, 90] degrees (type A)"},
+    {"TypeAHorizontal0To180", [](auto &l) { IESFile f = FileAB(3, true); f.horizontal = Range(0, 180, 10); l = f.Lines(); }, 8,
+     "horizontal angles must run from -90 to 90 degrees, or from 0 to 90 (laterally symmetric) (type A); got 0 to 180"},
+    {"TypeBHorizontalHalf", [](auto &l) { IESFile f = FileAB(2, true); f.horizontal = Range(-45, 90, 5); l = f.Lines(); }, 8,
+     "(type B); got -45 to 90"},
+    {"TypeBSingleHorizontal", [](auto &l) { IESFile f = FileAB(2, true); f.horizontal = {0}; l = f.Lines(); }, 8,
+     "(type B); got the single angle 0"},
+    {"TypeACountMismatch", [](auto &l) { l = FileAB(3, true).Lines(); l.pop_back(); }, 0,
+     "ends after 2628 of the 2701 candela values (73 vertical x 37 horizontal angles)"},
+    // TILT=INCLUDE and TILT=<file>.
+    {"TiltGeometry", [](auto &l) { l[3] = "TILT=INCLUDE"; l.insert(l.begin() + 4, {"4", "1", "0", "1"}); }, 5,
+     "lamp-to-luminaire geometry must be 1, 2 or 3 (got 4)"},
+    {"TiltCount", [](auto &l) { l[3] = "TILT=INCLUDE"; l.insert(l.begin() + 4, {"2", "0", "0", "1"}); }, 6,
+     "the number of tilt angles must be at least 1 (got 0)"},
+    {"TiltNegativeFactor", [](auto &l) { l[3] = "TILT=INCLUDE"; l.insert(l.begin() + 4, {"3", "2", "0 90", "1 -0.5"}); }, 8,
+     "negative tilt multiplying factor -0.5"},
+    {"TiltFileGeometry", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 2, "lamp-to-luminaire geometry must be 1, 2 or 3 (got 0)",
+     "\n0\n1\n0\n1\n"},
+    {"TiltFileTruncated", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 4, "the file ends before tilt multiplying factor 3 of 3",
+     "1\n3\n0 45 90\n1 0.9\n"},
+    {"TiltFileExtraNumbers", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 5,
+     "1 more number(s) after the last tilt multiplying factor (2 tilt angles)", "1\n2\n0 90\n1 0.5\n7\n"},
+    {"TiltFileNotANumber", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 3, "\"4x\" (not a number)", "1\n2\n0 4x\n1 0.5\n"},
+    {"TiltFileAnglesOutOfRange", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 3, "tilt angle 120 is outside [0, 90] degrees",
+     "2 2\n0\n120\n1 0.5\n"},
+    {"TiltFileEmpty", [](auto &l) { l[3] = "TILT=lamp.tlt"; }, 1, "the file ends before the lamp-to-luminaire geometry", ""},
     {"BadMultiplier", [](auto &l) { l[4] = "1 -1 0 37 1 1 2 0 0 0"; }, 5, "candela multiplier must be positive"},
     {"FractionalCount", [](auto &l) { l[4] = "1 -1 1 36.5 1 1 2 0 0 0"; }, 5, "as an integer"},
     {"BadTiltInclude", [](auto &l) { l[3] = "TILT=INCLUDE"; l.insert(l.begin() + 4, {"1", "3", "0 90", "1 0.9 0.8"}); }, 8,
@@ -542,6 +772,19 @@ TEST(IESCommandLine, InfoListsProfilesAndBadFilesExitTwo) {
     EXPECT_TRUE(Contains(r.output, "  light 2: spot \"cos.ies\": LM-63-2002")) << r.output;
     EXPECT_TRUE(Contains(r.output, "  light 3: goniometric \"g.exr\": 16 x 16 equal-area image (Y)")) << r.output;
     EXPECT_FALSE(Contains(r.output, "light 4:")) << r.output;
+    // Types B and A and the tilt.
+    WriteText(dir + "/b.ies", JoinLines(FileAB(2, true).Lines()));
+    WriteText(dir + "/tilt.ies", JoinLines(TiltedCosine("TILT=INCLUDE", true)));
+    WriteText(dir + "/ab.pbrt", std::string(kHeader) + "LightSource \"point\" \"string iesfile\" \"b.ies\"\n"
+                                                       "LightSource \"point\" \"string iesfile\" \"tilt.ies\" \"float iestilt\" 45\n");
+    r = test::RunProcess({test::LucernaBinary(), "info", dir + "/ab.pbrt"});
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(Contains(r.output, "  light 0: point \"b.ies\": LM-63-2002, type B, TILT=NONE, 73 vertical x 37 horizontal angles "
+                                   "(horizontal 0 to 90, laterally symmetric), vertical -90 to 90, peak "))
+        << r.output;
+    EXPECT_TRUE(Contains(r.output, "  light 1: point \"tilt.ies\": LM-63-2002, type C, TILT=INCLUDE (lamp geometry 1, 3 tilt "
+                                   "angles 0-90; tilted 45 degrees: factor 0.8), 37 vertical"))
+        << r.output;
 
     std::vector<std::string> bad = CosineFile().Lines();
     bad[10 - 2] = "3 -4 5";   // line 9: the candela values

@@ -208,24 +208,46 @@ uint32_t AddProfileTable(BuildContext &ctx, const std::vector<float> &values, ui
     return AddImageData(ctx, li, WrapMode::Clamp);  // lookups clamp or wrap octahedrally (lights.h)
 }
 
-// The profile table of the IES file named by string parameter `param` of e (cached per file);
-// *description: the line for `lucerna info`.
+// The profile table of the IES file named by string parameter `param` of e (cached per file and
+// tilt); *description: the line for `lucerna info`. "float iestilt" (degrees) applies the file's
+// tilt factor at that tilt (docs/lights.md); it is an error for a file without tilt data or
+// outside the file's tilt angles.
 uint32_t IESProfileTable(BuildContext &ctx, const LightEntity &e, const std::string &param, std::string *description) {
     const ParameterDictionary &p = e.params;
     std::string filename = p.GetOneString(param, "");
     FileLoc loc = ParamLoc(p, param, e.loc);
     if (filename.empty()) Fail(loc, "LightSource " + Quoted(e.name) + ": " + Quoted(param) + " is empty");
-    std::string path = LightPath(ctx, filename);
-    if (auto it = ctx.profileTables.find(path); it != ctx.profileTables.end()) {
+    const bool tilted = p.Has("iestilt");
+    const double tilt = p.GetOneFloat("iestilt", 0);
+    std::string path = LightPath(ctx, filename), key = path;
+    if (tilted) {
+        char buf[40];
+        std::snprintf(buf, sizeof(buf), "\ntilt %.17g", tilt);
+        key += buf;
+    }
+    if (auto it = ctx.profileTables.find(key); it != ctx.profileTables.end()) {
         *description = it->second.second;
         return it->second.first;
     }
     ctx.scene.inputFiles.push_back(path);
     IESProfile prof = ReadIES(path, loc, "the IES file of LightSource " + Quoted(e.name) + " at " + loc.ToString());
+    if (!prof.tiltFile.empty()) ctx.scene.inputFiles.push_back(prof.tiltFile);
+    if (tilted) {
+        FileLoc tiltLoc = ParamLoc(p, "iestilt", e.loc);
+        double factor;
+        if (prof.tiltAngles.empty())
+            Fail(tiltLoc, "LightSource " + Quoted(e.name) + ": \"iestilt\" is meaningless: " + Quoted(filename) +
+                              " has TILT=NONE (no tilt data)");
+        if (!prof.TiltFactorAt(tilt, &factor))
+            Fail(tiltLoc, "LightSource " + Quoted(e.name) + ": \"iestilt\" " + FormatNumber(tilt) + " is outside the tilt angles of " +
+                              Quoted(filename) + " (" + FormatNumber(prof.tiltAngles.front()) + "-" +
+                              FormatNumber(prof.tiltAngles.back()) + " degrees; LM-63 gives no factor beyond them)");
+        prof.SetTilt(tilt);
+    }
     std::vector<float> table = IESEqualAreaTable(prof, kIESTableResolution);
     uint32_t index = AddProfileTable(ctx, table, kIESTableResolution + 1);
     *description = Quoted(filename) + ": " + prof.Describe();
-    ctx.profileTables[path] = {index, *description};
+    ctx.profileTables[key] = {index, *description};
     return index;
 }
 

@@ -1,11 +1,13 @@
-// Lucerna (host): the IES LM-63 reader (header, TILT, the photometric web as a stream of numbers
-// with their line numbers), the bilinear evaluation of the web and its equal-area table.
+// Lucerna (host): the IES LM-63 reader (header, TILT data included or in a separate file, the
+// photometric web as a stream of numbers with their line numbers), the bilinear evaluation of the
+// web for types C, B and A and its equal-area table (ANSI/IESNA LM-63-2002; axes: docs/lights.md).
 #include "lucerna/scene/ies.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -65,30 +67,36 @@ class IESReader {
         if (tilt == "NONE") {
             p.tilt = "NONE";
         } else if (tilt == "INCLUDE") {
-            // Lamp-to-luminaire geometry, the tilt angles and their multiplying factors: checked, not
-            // applied (they describe a lamp tilted away from its measured orientation).
             p.tilt = "INCLUDE";
-            int geometry = Int("the lamp-to-luminaire geometry (TILT=INCLUDE)");
-            if (geometry < 1 || geometry > 3) FailAtLast("lamp-to-luminaire geometry must be 1, 2 or 3 (got " + FormatNumber(geometry) + ")");
-            int n = Int("the number of tilt angles");
-            if (n < 1) FailAtLast("the number of tilt angles must be at least 1 (got " + FormatNumber(n) + ")");
-            std::vector<double> angles;
-            for (int i = 0; i < n; ++i) {
-                double a = Number("tilt angle " + std::to_string(i + 1) + " of " + std::to_string(n));
-                if (a < 0 || a > 90) FailAtLast("tilt angle " + FormatNumber(a) + " is outside [0, 90] degrees");
-                if (!angles.empty() && !(a > angles.back()))
-                    FailAtLast("tilt angles must increase: " + FormatNumber(a) + " follows " + FormatNumber(angles.back()));
-                angles.push_back(a);
-            }
-            for (int i = 0; i < n; ++i) {
-                double f = Number("tilt multiplying factor " + std::to_string(i + 1) + " of " + std::to_string(n));
-                if (f < 0) FailAtLast("negative tilt multiplying factor " + FormatNumber(f));
-            }
+            ReadTilt(p, " (TILT=INCLUDE)");
+        } else if (!tilt.empty()) {
+            // TILT=<file>: the same numbers in a file of their own, next to the IES file.
+            p.tilt = std::string(tilt);
+            std::filesystem::path tp(p.tilt);
+            if (tp.is_relative()) tp = std::filesystem::path(*file_).parent_path() / tp;
+            p.tiltFile = tp.string();
+            std::error_code ec;
+            std::ifstream in;
+            if (std::filesystem::is_regular_file(tp, ec)) in.open(p.tiltFile, std::ios::binary);   // not a device or folder
+            if (!in.is_open()) Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": cannot open the tilt file \"" + p.tiltFile + "\"");
+            if (std::filesystem::file_size(tp, ec) > (uintmax_t(1) << 24))
+                Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": the tilt file \"" + p.tiltFile + "\" is over 16 MiB");
+            std::ostringstream s;
+            s << in.rdbuf();
+            std::string text = s.str();
+            if (in.bad()) Fail(tiltLineNo, "\"TILT=" + p.tilt + "\": read error in the tilt file \"" + p.tiltFile + "\"");
+            IESReader tiltReader(text, p.tiltFile,
+                                 "tilt file of " + *file_ + ":" + std::to_string(tiltLineNo) + (context_.empty() ? "" : ", " + context_));
+            tiltReader.SplitLines();
+            tiltReader.Tokenize(0);
+            tiltReader.ReadTilt(p, "");
+            if (tiltReader.pos_ < tiltReader.tokens_.size())
+                tiltReader.Fail(tiltReader.tokens_[tiltReader.pos_].line,
+                                std::to_string(tiltReader.tokens_.size() - tiltReader.pos_) +
+                                    " more number(s) after the last tilt multiplying factor (" +
+                                    std::to_string(p.tiltAngles.size()) + " tilt angles)");
         } else {
-            Fail(tiltLineNo, tilt.empty() ? std::string("\"TILT=\" without a value (NONE, INCLUDE or a file name)")
-                                          : "\"TILT=" + std::string(tilt) +
-                                                "\": tilt data in a separate file is not supported (use TILT=NONE or "
-                                                "TILT=INCLUDE)");
+            Fail(tiltLineNo, "\"TILT=\" without a value (NONE, INCLUDE or a file name)");
         }
         p.lamps = Int("the number of lamps");
         if (p.lamps < 1) FailAtLast("the number of lamps must be at least 1 (got " + FormatNumber(p.lamps) + ")");
@@ -103,10 +111,7 @@ class IESReader {
         if (nh < 1) FailAtLast("at least 1 horizontal angle is needed (got " + FormatNumber(nh) + ")");
         if (double(nv) * double(nh) > 1e7) FailAtLast("the web has " + FormatNumber(double(nv) * nh) + " candela values (more than 10^7)");
         p.photometricType = Int("the photometric type");
-        if (p.photometricType == 2 || p.photometricType == 3)
-            FailAtLast(std::string("photometric type ") + (p.photometricType == 2 ? "B (2)" : "A (3)") +
-                       " is not supported (only type C, 1)");
-        if (p.photometricType != 1) FailAtLast("the photometric type must be 1 (C), 2 (B) or 3 (A) (got " + FormatNumber(p.photometricType) + ")");
+        if (p.photometricType < 1 || p.photometricType > 3) FailAtLast("the photometric type must be 1 (C), 2 (B) or 3 (A) (got " + FormatNumber(p.photometricType) + ")");
         int units = Int("the units type");
         if (units != 1 && units != 2) FailAtLast("the units type must be 1 (feet) or 2 (meters) (got " + FormatNumber(units) + ")");
         Number("the luminous opening's width");
@@ -121,14 +126,28 @@ class IESReader {
         p.inputWatts = Number("the input watts");
         if (p.inputWatts < 0) FailAtLast("the input watts must not be negative (got " + FormatNumber(p.inputWatts) + ")");
 
+        // Type C: vertical from nadir (0) to zenith (180). Types A and B: elevation from the photometric
+        // axis, -90..90 (LM-63-2002: first -90 or 0, last 90; sub-ranges are read, dark outside).
+        const bool typeC = p.photometricType == 1;
+        const std::string type = std::string("type ") + p.TypeLetter();
+        const double vLo = typeC ? 0 : -90, vHi = typeC ? 180 : 90;
         ReadAngles(p.vertical, nv, "vertical");
         for (size_t i = 0; i < p.vertical.size(); ++i)
-            if (p.vertical[i] < 0 || p.vertical[i] > 180)
-                FailAt(angleLine_[i], "vertical angle " + FormatNumber(p.vertical[i]) + " is outside [0, 180] degrees (type C)");
+            if (p.vertical[i] < vLo || p.vertical[i] > vHi)
+                FailAt(angleLine_[i], "vertical angle " + FormatNumber(p.vertical[i]) + " is outside [" + FormatNumber(vLo) + ", " +
+                                          FormatNumber(vHi) + "] degrees (" + type + ")");
         ReadAngles(p.horizontal, nh, "horizontal");
         double h0 = p.horizontal.front(), h1 = p.horizontal.back();
         int hLine = angleLine_.back();
-        if (nh == 1) {
+        if (!typeC) {
+            // LM-63-2002, section 4: 0..90 for a luminaire laterally symmetric about its vertical reference
+            // plane, -90..90 otherwise.
+            if (nh >= 2 && h0 == 0 && h1 == 90) p.symmetry = IESSymmetry::Lateral;
+            else if (nh >= 2 && h0 == -90 && h1 == 90) p.symmetry = IESSymmetry::LateralFull;
+            else
+                FailAt(hLine, "horizontal angles must run from -90 to 90 degrees, or from 0 to 90 (laterally symmetric) (" + type +
+                                  "); got " + (nh == 1 ? "the single angle " + FormatNumber(h0) : FormatNumber(h0) + " to " + FormatNumber(h1)));
+        } else if (nh == 1) {
             if (h0 != 0) FailAt(hLine, "a single horizontal angle must be 0 (got " + FormatNumber(h0) + ")");
             p.symmetry = IESSymmetry::Rotational;
         } else if (h0 == 0 && h1 == 90) p.symmetry = IESSymmetry::Quadrant;
@@ -167,6 +186,31 @@ class IESReader {
     }
 
   private:
+    // Lamp-to-luminaire geometry, the number of tilt angles, the angles and their multiplying factors
+    // (LM-63-2002, section 4), from this reader's numbers: those after TILT=INCLUDE or a tilt file's.
+    void ReadTilt(IESProfile &p, const std::string &where) {
+        p.tiltGeometry = Int("the lamp-to-luminaire geometry" + where);
+        if (p.tiltGeometry < 1 || p.tiltGeometry > 3)
+            FailAtLast("lamp-to-luminaire geometry must be 1, 2 or 3 (got " + FormatNumber(p.tiltGeometry) + ")");
+        int n = Int("the number of tilt angles");
+        if (n < 1) FailAtLast("the number of tilt angles must be at least 1 (got " + FormatNumber(n) + ")");
+        if (n > 100000) FailAtLast("the number of tilt angles is over 100000 (got " + FormatNumber(n) + ")");
+        p.tiltAngles.clear();
+        p.tiltFactors.clear();
+        for (int i = 0; i < n; ++i) {
+            double a = Number("tilt angle " + std::to_string(i + 1) + " of " + std::to_string(n));
+            if (a < 0 || a > 90) FailAtLast("tilt angle " + FormatNumber(a) + " is outside [0, 90] degrees");
+            if (!p.tiltAngles.empty() && !(a > p.tiltAngles.back()))
+                FailAtLast("tilt angles must increase: " + FormatNumber(a) + " follows " + FormatNumber(p.tiltAngles.back()));
+            p.tiltAngles.push_back(a);
+        }
+        for (int i = 0; i < n; ++i) {
+            double f = Number("tilt multiplying factor " + std::to_string(i + 1) + " of " + std::to_string(n));
+            if (f < 0) FailAtLast("negative tilt multiplying factor " + FormatNumber(f));
+            p.tiltFactors.push_back(f);
+        }
+    }
+
     [[noreturn]] void Fail(int line, const std::string &msg) const {
         FileLoc loc;
         loc.file = file_;
@@ -177,7 +221,7 @@ class IESReader {
     // At the line of the last token read (or of the TILT line when none was).
     [[noreturn]] void FailAtLast(const std::string &msg) const {
         int line = pos_ > 0 ? tokens_[pos_ - 1].line : (tokens_.empty() ? int(lines_.size()) : tokens_[0].line);
-        Fail(line, msg);
+        Fail(std::max(line, 1), msg);
     }
 
     void SplitLines() {
@@ -272,6 +316,13 @@ double IESProfile::Evaluate(double v, double h) const {
     double value;
     if (horizontal.size() == 1) {
         value = column(0);
+    } else if (photometricType != 1) {
+        if (symmetry == IESSymmetry::Lateral) h = std::abs(h);
+        if (!(h >= horizontal.front() && h <= horizontal.back())) return 0;
+        size_t ih;
+        double th;
+        FindInterval(horizontal, h, &ih, &th);
+        value = column(ih) * (1 - th) + column(ih + 1) * th;
     } else {
         h = std::fmod(h, 360.0);
         if (h < 0) h += 360;
@@ -297,6 +348,27 @@ double IESProfile::Evaluate(double v, double h) const {
     return value * Factor();
 }
 
+bool IESProfile::TiltFactorAt(double degrees, double *factor) const {
+    if (tiltAngles.empty() || !(degrees >= tiltAngles.front() && degrees <= tiltAngles.back())) return false;
+    if (tiltAngles.size() == 1) {
+        *factor = tiltFactors[0];
+        return true;
+    }
+    size_t i;
+    double t;
+    FindInterval(tiltAngles, degrees, &i, &t);
+    *factor = tiltFactors[i] * (1 - t) + tiltFactors[i + 1] * t;
+    return true;
+}
+
+void IESProfile::SetTilt(double degrees) {
+    double f = 1;
+    TiltFactorAt(degrees, &f);
+    tiltAngle = degrees;
+    tiltFactor = f;
+    tiltApplied = true;
+}
+
 double IESProfile::MaxCandela() const {
     double m = 0;
     for (double c : candela) m = std::max(m, c);
@@ -311,11 +383,20 @@ std::string IESProfile::Describe() const {
     case IESSymmetry::Half0To180: sym = "horizontal 0-180, symmetric about the 0-180 plane"; break;
     case IESSymmetry::Half90To270: sym = "horizontal 90-270, symmetric about the 90-270 plane"; break;
     case IESSymmetry::Full: sym = "horizontal 0-360"; break;
+    case IESSymmetry::Lateral: sym = "horizontal 0 to 90, laterally symmetric"; break;
+    case IESSymmetry::LateralFull: sym = "horizontal -90 to 90"; break;
     }
     std::ostringstream o;
-    o << format << ", type C, TILT=" << tilt << ", " << vertical.size() << " vertical x " << horizontal.size()
-      << " horizontal angles (" << sym << "), vertical " << FormatNumber(vertical.front()) << "-" << FormatNumber(vertical.back())
-      << ", peak " << FormatNumber(MaxCandela()) << " cd";
+    o << format << ", type " << TypeLetter() << ", TILT=" << tilt;
+    if (tiltGeometry) {
+        o << " (lamp geometry " << tiltGeometry << ", " << tiltAngles.size() << " tilt angles " << FormatNumber(tiltAngles.front())
+          << "-" << FormatNumber(tiltAngles.back());
+        if (tiltApplied) o << "; tilted " << FormatNumber(tiltAngle) << " degrees: factor " << FormatNumber(tiltFactor) << ")";
+        else o << "; not tilted)";
+    }
+    o << ", " << vertical.size() << " vertical x " << horizontal.size() << " horizontal angles (" << sym << "), vertical "
+      << FormatNumber(vertical.front()) << (vertical.front() < 0 ? " to " : "-") << FormatNumber(vertical.back()) << ", peak "
+      << FormatNumber(MaxCandela()) << " cd";
     return o.str();
 }
 
@@ -334,8 +415,23 @@ IESProfile ReadIES(const std::string &path, const FileLoc &referencedFrom, const
     return ParseIES(text, path, context);
 }
 
-void IESAnglesOfDirection(float wx, float wy, float wz, double *vertical, double *horizontal) {
+void IESAnglesOfDirection(float wx, float wy, float wz, double *vertical, double *horizontal, int type) {
     const double toDeg = 180.0 / 3.14159265358979323846;
+    const double x = wx, y = wy, z = wz;
+    if (type == 2) {
+        // Type B: polar axis y (lateral); vertical = the plane's rotation about it from the axis -z
+        // towards +x, horizontal = the elevation out of that plane towards +y.
+        *vertical = (x == 0 && z == 0) ? 0.0 : std::atan2(x, -z) * toDeg;
+        *horizontal = std::atan2(y, std::hypot(x, z)) * toDeg;
+        return;
+    }
+    if (type == 3) {
+        // Type A: polar axis x (vertical); horizontal = the plane's rotation about it from -z towards
+        // +y, vertical = the elevation out of that plane towards +x.
+        *vertical = std::atan2(x, std::hypot(y, z)) * toDeg;
+        *horizontal = (y == 0 && z == 0) ? 0.0 : std::atan2(y, -z) * toDeg;
+        return;
+    }
     *vertical = std::acos(std::clamp(-double(wz), -1.0, 1.0)) * toDeg;
     double h = (wx == 0 && wy == 0) ? 0.0 : std::atan2(-double(wy), double(wx)) * toDeg;
     if (h < 0) h += 360;
@@ -349,7 +445,7 @@ std::vector<float> IESEqualAreaTable(const IESProfile &profile, int n) {
         for (size_t x = 0; x < m; ++x) {
             Vec3f w = EqualAreaSquareToSphere(Vec2f(Float(x) / Float(n), Float(y) / Float(n)));
             double v, h;
-            IESAnglesOfDirection(w.x, w.y, w.z, &v, &h);
+            IESAnglesOfDirection(w.x, w.y, w.z, &v, &h, profile.photometricType);
             t[y * m + x] = float(profile.Evaluate(v, h));
         }
     return t;
