@@ -15,7 +15,7 @@ TEST(RenderSettings, EverySettingRoundTripsThroughItsText) {
     RenderSettings s;
     const std::pair<const char *, const char *> values[] = {
         {"integrator", "regpath"}, {"maxdepth", "17"},   {"light-strategy", "nee"}, {"reg-radius", "0.25"},
-        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"mnee", "false"},         {"seed", "4000000000"},
+        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"mnee", "false"},         {"beam-segments", "false"}, {"seed", "4000000000"},
         {"spp", "300"},
         {"time", "12.5"},          {"threads", "3"},     {"device", "cpu"},         {"tracer", "bvh"},
         {"progress", "false"}};
@@ -61,7 +61,9 @@ TEST(RenderSettings, HashFollowsTheImageSettingsOnly) {
         else if (std::string(info.name) == "light-strategy") w = "bsdf";
         else if (std::string(info.name) == "device") w = "cuda";
         else if (std::string(info.name) == "tracer") w = "bvh";
-        else if (std::string(info.name) == "progress" || std::string(info.name) == "mnee") w = "false";
+        else if (std::string(info.name) == "progress" || std::string(info.name) == "mnee" ||
+                 std::string(info.name) == "beam-segments")
+            w = "false";
         else if (std::string(info.name) == "reg-lambda") w = "0.5";
         else w = "7";
         std::string error;
