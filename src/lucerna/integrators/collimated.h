@@ -136,4 +136,80 @@ LU_HD SampledSpectrum BeamSegmentsLi(const Ray &ray, Float tEnd, uint32_t medium
     return L;
 }
 
+// ---- The beam's scattered light seen from a vertex (media) ----
+// At a non-specular vertex x (surface or medium) the paths x -> x' -> beam with x' a medium point
+// in the beam's region are sampled from x: x' on the beam, its distance along the axis s
+// equiangular as seen from x (density D / ((theta_b - theta_a)(D^2 + (s - s_x)^2)) on [0, L], D
+// the distance of x from the axis, at least R), uniform across the disc of radius R + s tan sigma
+// (outside it nothing sees the regularized beam), shadow rays x -> x' and x' -> beam (SampleBeamLi):
+//     f(x) T(x, x') sigma_s(x') p(x') T(x', y) L_r / (pdf_V |x' - x|^2 pdf_a).
+// These paths have three techniques: this one, the beam-segment technique on the segment that
+// leaves x, and free flight on it. Inside the region free flight gives the beam up (see above),
+// and the segment technique runs only on segments that leave the camera or a Dirac lobe (where
+// nothing can connect); from a non-specular vertex this one takes them all. A random direction
+// from x meets a 2 cm beam in a small solid angle: the light the beam scatters into the haze
+// around it, onto the walls and back into the beam would otherwise be speckle.
+template <typename Scatter, typename Tracer>
+LU_HD SampledSpectrum BeamScatterLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
+                                    const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
+                                    const Tracer &tracer, const PathSettings &ps, PathStats &st) {
+    SampledSpectrum L(0);
+    if (!scene.walkInterfaces) return L;   // no media
+    Float omc = BeamOneMinusCos(ps.reg);
+    Float cosS = 1 - omc, sinS = SafeSqrt(omc * (2 - omc));
+    if (!(omc > 0) || !(cosS > 0)) return L;
+    Float tanS = sinS / cosS;
+    SampledSpectrum prefix = vm.r ? vm.r->u : SampledSpectrum(1);
+    for (uint32_t li = 0; li < scene.lights.size; ++li) {
+        const Light &l = scene.lights[li];
+        if (l.kind != LightKind::Collimated) continue;
+        Float u1 = sampler.Get1D();
+        Vec2f u2 = sampler.Get2D(), u3 = sampler.Get2D();
+        // The axial distance, equiangular from x.
+        Vec3f q = ctx.p - l.position;
+        Float sx = Dot(q, l.direction), reach = BeamReach(l);
+        Float D = Max(Length(q - l.direction * sx), l.beamRadius);
+        Float ta = std::atan2(-sx, D), tb = std::atan2(reach - sx, D);
+        if (!(tb > ta)) continue;
+        Float s = sx + D * std::tan(ta + u1 * (tb - ta));
+        if (!(s > 0 && s < reach)) continue;
+        Float pdfS = D / ((tb - ta) * (Sqr(D) + Sqr(s - sx)));
+        // Across the blurred beam.
+        Float Rl = l.beamRadius + s * tanS;
+        Vec2f dxy = SampleUniformDiskConcentric(u2) * Rl;
+        Frame f = Frame::FromZ(l.direction);
+        Vec3f xp = l.position + l.direction * s + f.FromLocal(Vec3f(dxy.x, dxy.y, 0));
+        if (!InBeamRegion(l, xp, BeamRegionRadius(l, omc))) continue;   // free flight's
+        Float pdfV = pdfS / (Pi * Sqr(Rl));
+        Vec3f d = xp - ctx.p;
+        Float dist2 = LengthSquared(d);
+        if (!(dist2 > 0) || !(pdfV > 0)) continue;
+        Vec3f wi = d / std::sqrt(dist2);
+        SampledSpectrum fx = sc.f(wo, wi);
+        if (fx.IsBlack()) continue;
+        // x' must see the beam.
+        LightSampleContext cp;
+        cp.p = xp;
+        LightLiSample ls;
+        if (!SampleBeamLi(l, scene, cp, u3, omc, lambda, &ls)) continue;
+        Ray toX = SpawnShadowRay(ctx.p, ctx.n, wi, std::sqrt(dist2), xp);
+        ShadowTransmittance tr1;
+        uint32_t mp = NoIndex;
+        ++st.rays; ++st.shadowRays;
+        if (!TraceTransmittance(scene, tracer, toX, vm.Toward(wi), lambda, st, &tr1, &mp) || mp == NoIndex) continue;
+        const Medium &m = scene.media[mp];
+        MediumProperties props = SampleMediumPoint(scene, m, xp, lambda);
+        if (props.sigmaS.IsBlack()) continue;
+        SampledSpectrum fp = PhaseScatter{m.g}.f(-wi, ls.wi);
+        Ray toBeam = SpawnShadowRay(xp, Vec3f(0, 0, 0), ls.wi, ls.distance, ls.pLight);
+        ShadowTransmittance tr2;
+        ++st.rays; ++st.shadowRays;
+        if (!TraceTransmittance(scene, tracer, toBeam, mp, lambda, st, &tr2)) continue;
+        SampledSpectrum qw = prefix * tr1.sL * tr2.sL;
+        L += fx * tr1.T * props.sigmaS * fp * tr2.T * ls.L *
+             (WavelengthWeight(qw, 1, qw, 0, lambda) / (pdfV * dist2 * ls.pdf));
+    }
+    return L;
+}
+
 }  // namespace lu

@@ -63,8 +63,9 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- The medium along the ray ----
         if (medium != NoIndex) {
             inMedia = true;
-            // The beams' light scattered along this segment where it crosses their regions.
-            if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+            // The beams' light scattered along this segment where it crosses their regions, when
+            // the segment leaves the camera or a Dirac lobe (else BeamScatterLd at its origin).
+            if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth && (prev.camera || prev.specular)) {
                 SampledSpectrum c = beta * BeamSegmentsLi(ray, tEnd, medium, r, lambda, sampler, scene, tracer, ps, st);
                 NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                 L += c;
@@ -87,6 +88,11 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                     SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st,
                                                         ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0,
                                                         BeamOneMinusCos(ps.reg), UsesBeamSegments(ps, scene));
+                    NoteBadValue(st, c, RejectCause::Medium, medium, depth);
+                    L += c;
+                }
+                if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+                    SampledSpectrum c = beta * BeamScatterLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, ps, st);
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
@@ -157,6 +163,12 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         if (t != DirectTechnique::None) {
             SampledSpectrum c = beta * Ld;
             if (t == DirectTechnique::Regularized) st.regEnergy += c.Average();
+            NoteBadValue(st, c, RejectCause::Direct, si.material, depth);
+            L += c;
+        }
+        if (!specular && UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+            SampledSpectrum c = beta * BeamScatterLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda,
+                                                     sampler, scene, tracer, ps, st);
             NoteBadValue(st, c, RejectCause::Direct, si.material, depth);
             L += c;
         }

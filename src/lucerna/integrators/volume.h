@@ -156,10 +156,12 @@ LU_HD inline bool RayTransmittance(const SceneView &scene, uint32_t medium, cons
 // The transmittance along shadow ray `ray` (from SpawnShadowRay: towards the point ray.o + ray.d
 // up to ray.tMax, or along a unit direction to infinity) that starts in `medium`: interface
 // surfaces (no material) are crossed, changing the medium as pbrt-v4's MediumInterface says; any
-// other surface blocks it. False when blocked or the estimate is 0.
+// other surface blocks it. False when blocked or the estimate is 0. *endMedium (if given): the
+// medium at the ray's end.
 template <typename Tracer>
 LU_HD bool TraceTransmittance(const SceneView &scene, const Tracer &tracer, Ray ray, uint32_t medium,
-                              const SampledWavelengths &lambda, PathStats &st, ShadowTransmittance *tr) {
+                              const SampledWavelengths &lambda, PathStats &st, ShadowTransmittance *tr,
+                              uint32_t *endMedium = nullptr) {
     const bool toPoint = ray.tMax != Infinity;
     const Vec3f target = ray.o + ray.d;
     RNG rng(Hash(ray.o.x, ray.o.y, ray.o.z), Hash(ray.d.x, ray.d.y, ray.d.z));
@@ -169,7 +171,10 @@ LU_HD bool TraceTransmittance(const SceneView &scene, const Tracer &tracer, Ray 
         if (found && scene.shapes[hit.shape].material != NoIndex) return false;
         if (medium != NoIndex && !RayTransmittance(scene, medium, ray, found ? hit.t : ray.tMax, lambda, rng, tr))
             return false;
-        if (!found) return true;
+        if (!found) {
+            if (endMedium) *endMedium = medium;
+            return true;
+        }
         // Cross the interface.
         SurfaceInteraction si = ComputeInteraction(scene, hit, ray);
         medium = MediumAfter(scene.shapes[hit.shape], si.n, ray.d, medium);
