@@ -386,6 +386,9 @@ TEST(Collimated, BadParametersAreLocatedErrors) {
     EXPECT_NEAR(ok->spectra.Eval(l.spectrum, 533) / ok->spectra.Eval(l.spectrum, 532), 0.0625, 1e-3);   // FWHM 1 nm: 2^-4 at 1 nm
     // The light sampler's power of the 1 nm line is its 1 W, not what four wavelengths happen to see.
     EXPECT_NEAR(LightPower(l, ok->View()), 1.0, 1e-3);
+    // What `lucerna info` lists for it (render-space sizes).
+    ASSERT_EQ(ok->stats.lightProfiles.size(), 1u);
+    EXPECT_EQ(ok->stats.lightProfiles[0], "light 0: collimated disc radius 0.02, uniform, 532 nm line (1 nm wide), 1 W");
 }
 
 }  // namespace lu::test

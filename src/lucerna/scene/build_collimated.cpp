@@ -49,7 +49,7 @@ double SpectrumIntegral(BuildContext &ctx, const Spectrum &s) {
 
 }  // namespace
 
-void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
+void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l, std::string *description) {
     const ParameterDictionary &p = e.params;
     const std::string owner = "LightSource \"collimated\"";
     l.kind = LightKind::Collimated;
@@ -138,6 +138,13 @@ void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l) {
         l.scale = Float(photometric > 0 ? scale / photometric : scale);
     }
     ctx.scene.collimatedLightLocs.push_back(e.loc);
+    // "rect 0.3 x 0.1, gaussian waist 0.05, 532 nm line (10 nm wide), 0.5 W" (render-space sizes).
+    std::string d = BeamIsRectangle(l) ? "rect " + FormatNumber(2 * l.beamHalf.x) + " x " + FormatNumber(2 * l.beamHalf.y)
+                                       : "disc radius " + FormatNumber(l.beamRadius);
+    d += l.beamWaist > 0 ? ", gaussian waist " + FormatNumber(l.beamWaist) : ", uniform";
+    if (line) d += ", " + FormatNumber(p.GetOneFloat("wavelength", 0)) + " nm line (" + FormatNumber(p.GetOneFloat("bandwidth", 1)) + " nm wide)";
+    if (p.Has("power")) d += ", " + FormatNumber(p.GetOneFloat("power", 1) * scale) + " W";
+    *description = d;
 }
 
 }  // namespace lu::build

@@ -223,7 +223,8 @@ void BuildShapes(BuildContext &ctx);
 
 void BuildLights(BuildContext &ctx);
 // build_collimated.cpp: LightSource "collimated" (a Lucerna extension) into l.
-void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l);
+// *description: the beam's line for `lucerna info` (aperture, profile, spectrum, power).
+void BuildCollimated(BuildContext &ctx, const LightEntity &e, Light &l, std::string *description);
 // Scene bounding sphere for distant / infinite lights and the power-proportional light CDF
 // (after all geometry exists).
 void FinishLights(BuildContext &ctx);

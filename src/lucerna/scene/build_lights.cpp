@@ -449,7 +449,7 @@ void BuildLights(BuildContext &ctx) {
         } else if (e.name == "infinite") {
             BuildInfinite(ctx, e, l);
         } else if (e.name == "collimated") {
-            BuildCollimated(ctx, e, l);
+            BuildCollimated(ctx, e, l, &profile);
         } else if (e.name == "goniometric") {
             BuildGoniometric(ctx, e, l, &profile);
         } else if (e.name == "projection") {
