@@ -83,7 +83,8 @@ LU_INLINE SampledSpectrum BeamHitLe(const ScatterVertex &v, const SceneView &sce
 // crosses it. Off with --beam-segments false and with --light-strategy bsdf. Spectral MIS: the positions are sampled the same way at every wavelength, the
 // transmittance estimates (ratio tracking in heterogeneous media) as a shadow ray's.
 LU_INLINE bool UsesBeamSegments(const PathSettings &ps, const SceneView &scene) {
-    return ps.beamSegments && ps.reg.enabled && scene.collimatedLights > 0 && ps.strategy != LightStrategy::BSDFOnly;
+    return ps.beamSegments && ps.reg.enabled && scene.collimatedLights > 0 && scene.media.size > 0 &&
+           ps.strategy != LightStrategy::BSDFOnly;
 }
 
 // The technique's radiance for `ray` (any direction length) in `medium` up to ray parameter tEnd,
@@ -154,7 +155,6 @@ LU_HD SampledSpectrum BeamScatterLd(const LightSampleContext &ctx, Vec3f wo, con
                                     const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                     const Tracer &tracer, const PathSettings &ps, PathStats &st) {
     SampledSpectrum L(0);
-    if (!scene.walkInterfaces) return L;   // no media
     Float omc = BeamOneMinusCos(ps.reg);
     Float cosS = 1 - omc, sinS = SafeSqrt(omc * (2 - omc));
     if (!(omc > 0) || !(cosS > 0)) return L;
