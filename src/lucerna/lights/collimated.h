@@ -191,16 +191,17 @@ LU_INLINE Float BeamPdfW(const Light &l, const LightSampleContext &ctx, Vec3f wi
 // fixed region that is convex, so that a ray meets it in one interval: the cylinder of radius
 // R + L tan sigma and length L in front of the aperture (R: the aperture's outer radius, L: the
 // beam's reach, the farthest a point of the scene's bounding sphere (sceneCenter, sceneRadius) can
-// lie along the axis). The medium may extend beyond the scene: free-flight vertices cover that. It need not equal the points that see
-// the beam: the region decides which technique estimates the beam's light at a medium point
-// (inside: the segment technique; outside: free-flight vertices as every other light).
+// lie along the axis). The medium may extend beyond the scene: free-flight vertices cover that.
+// The region need not equal the points that see the beam: it decides which technique estimates
+// the beam's light at a medium point (inside: the beam techniques; outside: free-flight vertices,
+// as for every other light).
 
 LU_INLINE Float BeamReach(const Light &l) { return Distance(l.position, l.sceneCenter) + l.sceneRadius; }
 
-// The region's radius for the pass's cone 1 - cos sigma (< 1: sigma below 90 degrees).
+// The region's radius for the pass's cone 1 - cos sigma (Infinity from 90 degrees on).
 LU_INLINE Float BeamRegionRadius(const Light &l, Float oneMinusCos) {
     Float cosS = 1 - oneMinusCos, sinS = SafeSqrt(oneMinusCos * (2 - oneMinusCos));
-    return l.beamRadius + BeamReach(l) * sinS / cosS;
+    return cosS > 0 ? l.beamRadius + BeamReach(l) * sinS / cosS : Infinity;
 }
 
 // Whether the point x lies in the beam's region.
@@ -229,13 +230,15 @@ LU_INLINE bool BeamRegionInterval(const Light &l, Vec3f o, Vec3f d, Float tMax, 
     // Within the cylinder: |qr + t dr|^2 < rc^2 (qr, dr: the parts perpendicular to the axis).
     Vec3f qr = q - l.direction * s0, dr = d - l.direction * ds;
     Float a = LengthSquared(dr), b = Dot(qr, dr), c = LengthSquared(qr) - Sqr(regionRadius);
-    if (a < Float(1e-12)) {
+    if (!(regionRadius < Infinity)) {
+        // A half-space slab: the axial bounds alone.
+    } else if (a < Float(1e-12)) {
         if (!(c < 0)) return false;   // parallel to the axis: all in or all out
     } else {
         Float disc = b * b - a * c;
         if (!(disc > 0)) return false;
         Float root = std::sqrt(disc);
-        // Roots without cancellation (pbrt's quadratic): q = -(b + sign(b) root).
+        // Roots without cancellation: qq = -(b + sign(b) root), roots qq / a and c / qq.
         Float qq = b < 0 ? -b + root : -b - root;
         Float r0 = qq / a, r1 = c / qq;
         lo = Max(lo, Min(r0, r1));
