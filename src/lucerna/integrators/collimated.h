@@ -87,6 +87,27 @@ LU_INLINE bool UsesBeamSegments(const PathSettings &ps, const SceneView &scene) 
            ps.strategy != LightStrategy::BSDFOnly;
 }
 
+// The last link of both beam techniques in media: the medium point xp (in `medium`), reached along
+// the unit direction d, scatters the beam sample ls towards -d: sigma_s(xp) p(-d, ls.wi)
+// T(xp, y) L_r / pdf_a. *sL: the beam shadow ray's per-wavelength probabilities. Black when xp
+// does not scatter or the beam is hidden.
+template <typename Tracer>
+LU_HD SampledSpectrum BeamInScatter(const LightLiSample &ls, Vec3f xp, uint32_t medium, Vec3f d,
+                                    const SampledWavelengths &lambda, const SceneView &scene, const Tracer &tracer,
+                                    PathStats &st, SampledSpectrum *sL) {
+    const Medium &m = scene.media[medium];
+    SampledSpectrum f = PhaseScatter{m.g}.f(-d, ls.wi);
+    if (f.IsBlack()) return f;
+    MediumProperties mp = SampleMediumPoint(scene, m, xp, lambda);
+    if (mp.sigmaS.IsBlack()) return mp.sigmaS;
+    Ray toBeam = SpawnShadowRay(xp, Vec3f(0, 0, 0), ls.wi, ls.distance, ls.pLight);
+    ShadowTransmittance tr;
+    ++st.rays; ++st.shadowRays;
+    if (!TraceTransmittance(scene, tracer, toBeam, medium, lambda, st, &tr)) return SampledSpectrum(0);
+    *sL = tr.sL;
+    return mp.sigmaS * f * tr.T * ls.L / ls.pdf;
+}
+
 // The technique's radiance for `ray` (any direction length) in `medium` up to ray parameter tEnd,
 // to be multiplied by the path throughput at the ray's origin (depth: the path's depth there; the
 // scattering vertex would be depth + 1). r: the path's per-wavelength probabilities.
@@ -102,11 +123,6 @@ LU_HD SampledSpectrum BeamSegmentsLi(const Ray &ray, Float tEnd, uint32_t medium
     ru.d = ray.d / len;
     Float tMax = tEnd * len;
     Float omc = BeamOneMinusCos(ps.reg);
-    const Medium &m = scene.media[medium];
-    PhaseScatter phase{m.g};
-    VertexMedia vm;
-    vm.medium = medium;
-    vm.r = &r;
     for (uint32_t li = 0; li < scene.lights.size; ++li) {
         const Light &l = scene.lights[li];
         if (l.kind != LightKind::Collimated) continue;
@@ -120,19 +136,15 @@ LU_HD SampledSpectrum BeamSegmentsLi(const Ray &ray, Float tEnd, uint32_t medium
         ctx.p = ru.o + ru.d * t;
         LightLiSample ls;
         if (!SampleBeamLi(l, scene, ctx, u2, omc, lambda, &ls)) continue;
-        SampledSpectrum f = phase.f(-ru.d, ls.wi);
-        if (f.IsBlack()) continue;
-        // The transmittance o -> x (this medium), the scattering coefficient at x, then x -> y.
+        // The transmittance o -> x (this medium), then x's scattering of the beam.
         ShadowTransmittance trSeg;
         RNG rng(Hash(ctx.p.x, ctx.p.y, ctx.p.z), Hash(ru.d.x, ru.d.y, ru.d.z));
         if (!RayTransmittance(scene, medium, ru, t, lambda, rng, &trSeg)) continue;
-        MediumProperties mp = SampleMediumPoint(scene, m, ctx.p, lambda);
-        if (mp.sigmaS.IsBlack()) continue;
-        Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
-        ShadowTransmittance tr;
-        if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr)) continue;
-        SampledSpectrum q = r.u * trSeg.sL * tr.sL;
-        L += trSeg.T * mp.sigmaS * f * tr.T * ls.L * (WavelengthWeight(q, 1, q, 0, lambda) / (pdfT * ls.pdf));
+        SampledSpectrum sL;
+        SampledSpectrum in = BeamInScatter(ls, ctx.p, medium, ru.d, lambda, scene, tracer, st, &sL);
+        if (in.IsBlack()) continue;
+        SampledSpectrum q = r.u * trSeg.sL * sL;
+        L += trSeg.T * in * (WavelengthWeight(q, 1, q, 0, lambda) / pdfT);
     }
     return L;
 }
@@ -197,17 +209,11 @@ LU_HD SampledSpectrum BeamScatterLd(const LightSampleContext &ctx, Vec3f wo, con
         uint32_t mp = NoIndex;
         ++st.rays; ++st.shadowRays;
         if (!TraceTransmittance(scene, tracer, toX, vm.Toward(wi), lambda, st, &tr1, &mp) || mp == NoIndex) continue;
-        const Medium &m = scene.media[mp];
-        MediumProperties props = SampleMediumPoint(scene, m, xp, lambda);
-        if (props.sigmaS.IsBlack()) continue;
-        SampledSpectrum fp = PhaseScatter{m.g}.f(-wi, ls.wi);
-        Ray toBeam = SpawnShadowRay(xp, Vec3f(0, 0, 0), ls.wi, ls.distance, ls.pLight);
-        ShadowTransmittance tr2;
-        ++st.rays; ++st.shadowRays;
-        if (!TraceTransmittance(scene, tracer, toBeam, mp, lambda, st, &tr2)) continue;
-        SampledSpectrum qw = prefix * tr1.sL * tr2.sL;
-        L += fx * tr1.T * props.sigmaS * fp * tr2.T * ls.L *
-             (WavelengthWeight(qw, 1, qw, 0, lambda) / (pdfV * dist2 * ls.pdf));
+        SampledSpectrum sL;
+        SampledSpectrum in = BeamInScatter(ls, xp, mp, wi, lambda, scene, tracer, st, &sL);
+        if (in.IsBlack()) continue;
+        SampledSpectrum qw = prefix * tr1.sL * sL;
+        L += fx * tr1.T * in * (WavelengthWeight(qw, 1, qw, 0, lambda) / (pdfV * dist2));
     }
     return L;
 }
