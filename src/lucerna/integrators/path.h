@@ -49,6 +49,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
     uint32_t medium = scene.camera.medium;   // the medium the current ray travels in
     WavelengthPdfs r;                        // used once the path has entered a medium
     bool inMedia = false;
+    const bool beamSegments = UsesBeamSegments(ps, scene);   // the beam techniques in media
     uint32_t crossedBeam = NoIndex;          // the collimated light's disc the ray was continued through
     for (int guard = 0; guard < 1024; ++guard) {
         HitRecord hit;
@@ -65,7 +66,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             inMedia = true;
             // The beams' light scattered along this segment where it crosses their regions, when
             // the segment leaves the camera or a Dirac lobe (else BeamScatterLd at its origin).
-            if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth && (prev.camera || prev.specular)) {
+            if (beamSegments && depth < ps.maxDepth && (prev.camera || prev.specular)) {
                 SampledSpectrum c = beta * BeamSegmentsLi(ray, tEnd, medium, r, lambda, sampler, scene, tracer, ps, st);
                 NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                 L += c;
@@ -87,16 +88,16 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 if (ps.strategy != LightStrategy::BSDFOnly) {
                     SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st,
                                                         ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0,
-                                                        BeamOneMinusCos(ps.reg), UsesBeamSegments(ps, scene));
+                                                        BeamOneMinusCos(ps.reg), beamSegments);
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
-                if (UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+                if (beamSegments && depth < ps.maxDepth) {
                     SampledSpectrum c = beta * BeamScatterLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, ps, st);
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
-                SamplePhaseDirection(pScatter, wo, g, UsesBeamSegments(ps, scene), sampler, prev, ray);
+                SamplePhaseDirection(pScatter, wo, g, beamSegments, sampler, prev, ray);
                 crossedBeam = NoIndex;
                 r.l = r.lChain = r.u;
                 if (!beta.IsFinite()) {
@@ -166,7 +167,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
             NoteBadValue(st, c, RejectCause::Direct, si.material, depth);
             L += c;
         }
-        if (!specular && UsesBeamSegments(ps, scene) && depth < ps.maxDepth) {
+        if (!specular && beamSegments && depth < ps.maxDepth) {
             SampledSpectrum c = beta * BeamScatterLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda,
                                                      sampler, scene, tracer, ps, st);
             NoteBadValue(st, c, RejectCause::Direct, si.material, depth);
