@@ -187,3 +187,27 @@ TEST(Data, NoPathOutsideTheRepository) {
 
 }  // namespace
 }  // namespace lu::test
+
+namespace lu::test {
+
+// bench/convergence renders each reference from the original its provenance note names: the
+// medium variant of volumetric-caustic from scene-v4.pbrt (with the medium), the plain one from
+// scene-v4-nomedium.pbrt (it once took the medium-less file for both).
+TEST(Data, ConvergenceBenchRendersTheSceneEachReferenceNames) {
+    ProcessResult r = RunProcess({"bash", std::string(LUCERNA_SOURCE_DIR) + "/bench/convergence", "--dry-run",
+                                  "--scenes", "volumetric-caustic,volumetric-caustic-medium", "--out", TempDir("conv_dry")});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::istringstream lines(r.output);
+    std::string line;
+    int seen = 0;
+    while (std::getline(lines, line)) {
+        if (line.find("converge ") == std::string::npos) continue;
+        bool medium = line.find("refs/volumetric-caustic-medium.exr") != std::string::npos;
+        std::string want = medium ? "bitterli-volumetric-caustic/scene-v4.pbrt " : "bitterli-volumetric-caustic/scene-v4-nomedium.pbrt ";
+        EXPECT_NE(line.find(want), std::string::npos) << line;
+        ++seen;
+    }
+    EXPECT_EQ(seen, 2) << r.output;
+}
+
+}  // namespace lu::test

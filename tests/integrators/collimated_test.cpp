@@ -332,6 +332,41 @@ TEST(Collimated, GaussianRectangleNormalizesToPower) {
     EXPECT_NEAR(p.mean, power, 4 * p.se + 0.005 * power) << "se " << p.se;
 }
 
+// The beam techniques in media partition the medium points by the beam's region (a function of
+// the point, InBeamRegion); the segment technique samples a ray's crossing of it
+// (BeamRegionInterval). The two must agree: along 2000 random rays, every point strictly inside
+// the interval is in the region and every point outside it is not (a margin of 1e-4 of the
+// interval's scale at its ends), for a kernel of 0.2 rad, and for one of 90 degrees (an infinite
+// radius: the axial slab alone).
+TEST(Collimated, BeamRegionIntervalMatchesTheRegion) {
+    auto scene = LoadSceneText("beam_region", BeamScene());
+    const Light &l = scene->lights[0];
+    ASSERT_GT(BeamReach(l), kD);
+    RNG rng(7, 11);
+    for (Float omc : {OneMinusCosAngle(Float(0.2)), Float(1)}) {
+        Float rc = BeamRegionRadius(l, omc);
+        if (omc == 1) EXPECT_EQ(rc, Infinity);
+        int crossed = 0, bad = 0;
+        for (int i = 0; i < 2000; ++i) {
+            Vec3f o(rng.Uniform<Float>() * 4 - 2, rng.Uniform<Float>() * 4 - 2, rng.Uniform<Float>() * 4 - 2);
+            Vec3f d = Normalize(Vec3f(rng.Uniform<Float>() - 0.5f, rng.Uniform<Float>() - 0.5f, rng.Uniform<Float>() - 0.5f));
+            Float tMax = rng.Uniform<Float>() * 6, t0 = -1, t1 = -1;
+            bool any = BeamRegionInterval(l, o, d, tMax, rc, &t0, &t1);
+            crossed += any;
+            for (int k = 0; k <= 200; ++k) {
+                Float t = tMax * k / 200;
+                bool in = InBeamRegion(l, o + d * t, rc);
+                Float margin = 1e-4f * (1 + tMax);
+                if (any && t > t0 + margin && t < t1 - margin) bad += !in;
+                if ((!any || t < t0 - margin || t > t1 + margin) && t > 0) bad += in;
+            }
+        }
+        EXPECT_EQ(bad, 0) << "1 - cos sigma " << omc;
+        EXPECT_GT(crossed, 100) << "1 - cos sigma " << omc;   // the test sees both cases
+        EXPECT_LT(crossed, 1900) << "1 - cos sigma " << omc;
+    }
+}
+
 // Bad parameters: a located error (the parameter's position), and nothing built.
 TEST(Collimated, BadParametersAreLocatedErrors) {
     struct Case {
