@@ -321,26 +321,35 @@ TEST(Mnee, PointLightUnderAThinSheetGetsTheTransmittanceProduct) {
     EXPECT_NEAR(ratio, 0.852, 0.01 * 0.852);
 }
 
-// MNEE and BSDF sampling share the paths through a glass slab to a small area light: MNEE alone
+// MNEE and BSDF sampling share the paths through a glass slab to an area light: MNEE alone
 // (light-strategy nee), BSDF sampling alone (bsdf) and both under MIS must estimate the same
-// image (weights that do not sum to one shift the MIS image). Block means, z-tests.
-TEST(Mnee, MisWithBsdfSamplingIsUnbiased) {
-    std::string world =
-        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 60 60 60 ]\n"
-        "Shape \"trianglemesh\" \"integer indices\" [ 0 2 1 0 3 2 ] \"point3 P\" [ -0.1 -0.1 1.2  0.1 -0.1 1.2  0.1 0.1 1.2  -0.1 0.1 1.2 ]\n"
-        "AttributeEnd\n"
+// image (weights that do not sum to one shift the MIS image). Block means, z-tests. halfSize: the
+// light's half width at height 1.2 (the same power at every size); mneeUnderMis: whether MNEE's
+// selectivity (MneeTargetsLight, 0.01 sr) lets it run under MIS there.
+void ExpectMneeMisUnbiased(const char *name, double halfSize, bool mneeUnderMis, uint64_t seed) {
+    char light[400];
+    std::snprintf(light, sizeof light,
+                  "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ %g %g %g ]\n"
+                  "Shape \"trianglemesh\" \"integer indices\" [ 0 2 1 0 3 2 ] \"point3 P\" [ %g %g 1.2  %g %g 1.2  %g %g 1.2  %g %g 1.2 ]\n"
+                  "AttributeEnd\n",
+                  60 * Sqr(0.1 / halfSize), 60 * Sqr(0.1 / halfSize), 60 * Sqr(0.1 / halfSize), -halfSize, -halfSize,
+                  halfSize, -halfSize, halfSize, halfSize, -halfSize, halfSize);
+    std::string world = std::string(light) +
         "AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n" + Quad(0, 4, true) + "AttributeEnd\n" +
         Slab(0.4, 0.5);
-    auto scene = LoadSceneText("mnee_mis", "LookAt 0 -0.3 2.5  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
-                                           "Film \"rgb\" \"integer xresolution\" [ 24 ] \"integer yresolution\" [ 24 ]\nWorldBegin\n" + world);
+    auto scene = LoadSceneText(name, "LookAt 0 -0.3 2.5  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 30 ]\n"
+                                     "Film \"rgb\" \"integer xresolution\" [ 24 ] \"integer yresolution\" [ 24 ]\nWorldBegin\n" + world);
     // regpath with a negligible kernel (what MNEE leaves to the regularized connection is ~0 here).
     // maxdepth 6: camera - slab (2) - floor - slab (2) - light is within it; MNEE adds exactly the
     // paths BSDF sampling can find.
-    auto mis = RenderScene(*scene, 256, 6, 11, 0, int(LightStrategy::MIS), true, 1e-5);
-    auto nee = RenderScene(*scene, 256, 6, 12, 0, int(LightStrategy::NEEOnly), true, 1e-5);
-    auto bsdf = RenderScene(*scene, 1024, 6, 13, 0, int(LightStrategy::BSDFOnly), false);
-    EXPECT_GT(mis.stats.mneeConnections, 0u);
-    EXPECT_GT(nee.stats.mneeConnections, 0u);
+    auto mis = RenderScene(*scene, 256, 6, seed, 0, int(LightStrategy::MIS), true, 1e-5);
+    auto nee = RenderScene(*scene, 256, 6, seed + 1, 0, int(LightStrategy::NEEOnly), true, 1e-5);
+    auto bsdf = RenderScene(*scene, 1024, 6, seed + 2, 0, int(LightStrategy::BSDFOnly), false);
+    if (mneeUnderMis)
+        EXPECT_GT(mis.stats.mneeConnections, 0u);
+    else
+        EXPECT_EQ(mis.stats.mneeConnections, 0u);
+    EXPECT_GT(nee.stats.mneeConnections, 0u);   // under NEE alone MNEE takes every light
     int blocks = 0, bad = 0;
     for (int by = 0; by < 24; by += 6)
         for (int bx = 0; bx < 24; bx += 6) {
@@ -358,6 +367,14 @@ TEST(Mnee, MisWithBsdfSamplingIsUnbiased) {
         }
     EXPECT_EQ(bad, 0) << bad << " of " << blocks << " block means disagree";
 }
+
+// A 6 cm light (under 0.004 sr from the floor): MNEE runs under MIS.
+TEST(Mnee, MisWithBsdfSamplingIsUnbiased) { ExpectMneeMisUnbiased("mnee_mis", 0.03, true, 11); }
+
+// A 20 cm light (0.044 sr from the floor): under MIS MNEE leaves it to BSDF sampling and the
+// regularized connection, on both sides of the MIS (an implicit hit that still took MNEE as its
+// partner would darken the caustic; an MNEE sample that still ran would brighten it).
+TEST(Mnee, LargeAreaLightsAreLeftToBsdfSampling) { ExpectMneeMisUnbiased("mnee_mis_large", 0.1, false, 31); }
 
 }  // namespace lu::test
 
@@ -400,8 +417,8 @@ TEST(Mnee, MisWithPhaseAndBsdfSamplingIsUnbiasedInFog) {
         "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [ 0.02 0.05 0.1 ] "
         "\"rgb sigma_s\" [ 0.5 0.3 0.2 ] \"float g\" [ 0.3 ]\nMediumInterface \"fog\" \"fog\"\n";
     std::string world =
-        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 8 8 8 ]\n"
-        "Shape \"trianglemesh\" \"integer indices\" [ 0 2 1 0 3 2 ] \"point3 P\" [ -0.3 -0.3 1.2  0.3 -0.3 1.2  0.3 0.3 1.2  -0.3 0.3 1.2 ]\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 450 450 450 ]\n"
+        "Shape \"trianglemesh\" \"integer indices\" [ 0 2 1 0 3 2 ] \"point3 P\" [ -0.04 -0.04 1.2  0.04 -0.04 1.2  0.04 0.04 1.2  -0.04 0.04 1.2 ]\n"
         "AttributeEnd\n"
         "AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n" + Quad(0, 4, true) + "AttributeEnd\n" +
         Slab(0.4, 0.5);

@@ -87,7 +87,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                 vm.r = &r;
                 if (ps.strategy != LightStrategy::BSDFOnly) {
                     SampledSpectrum c = beta * SampleLd(ctx, wo, PhaseScatter{g}, vm, lambda, sampler, scene, tracer, st,
-                                                        ps.strategy, UsesMnee(ps, scene) ? ps.maxDepth - depth : 0,
+                                                        ps.strategy, MneeAt(ps, scene, depth),
                                                         BeamOneMinusCos(ps.reg), beamSegments);
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;

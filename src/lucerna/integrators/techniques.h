@@ -24,6 +24,7 @@ struct PathSettings {
     LightStrategy strategy = LightStrategy::MIS;
     RegularizationParams reg;   // this pass's kernel
     bool mnee = false;          // manifold NEE through refractive chains (integrators/mnee.h)
+    Float mneeMaxSolidAngle = 0.01f;   // ... to area lights subtending less than this (sr) from the chain's start
     bool beamSegments = false;  // collimated beams in media: the beam-segment technique (integrators/collimated.h)
 };
 
@@ -31,6 +32,42 @@ struct PathSettings {
 // In scenes with media too: the chains carry the transmittance of the media they cross
 // (MneeChainTransmittance), and medium vertices start chains as surface vertices do.
 LU_INLINE bool UsesMnee(const PathSettings &ps, const SceneView &scene) { return ps.mnee && scene.transmitters > 0; }
+
+// MNEE's selectivity: whether MNEE is a technique for chains from x0 to `light`. Always for point
+// and spot lights (the only technique besides the regularized one). For an area light under MIS
+// only when its bounding sphere subtends less than maxSolidAngle (sr) from x0: a larger light,
+// seen through the chain, is found often enough by BSDF sampling (its hit probability is about the
+// solid angle times the BSDF's density), and a solve at every blocked shadow ray and at every hit
+// after a refractive chain costs more than it saves (smallvcm bs_c, a 50 cm ceiling light over a
+// glass ball: MNEE made samples 1.7x as expensive and their variance 8% lower). A function of
+// (x0, light) alone, so SampleMnee, MneeReproducesHit and SampleRegularized agree on it; under the
+// NEE-only strategy always (nothing else samples these paths without bias there).
+LU_INLINE bool MneeTargetsLight(LightStrategy strategy, Float maxSolidAngle, const Light &light, Vec3f x0) {
+    if (light.kind != LightKind::DiffuseArea || strategy != LightStrategy::MIS || light.boundRadius < 0) return true;
+    Float d2 = DistanceSquared(x0, light.boundCenter), r2 = Sqr(light.boundRadius);
+    if (!(r2 < d2)) return false;   // inside the bounding sphere
+    Float s2 = r2 / d2;             // 2 pi (1 - cos theta) with sin^2 theta = r^2 / d^2, without cancellation
+    return 2 * Pi * s2 / (1 + std::sqrt(1 - s2)) < maxSolidAngle;
+}
+LU_INLINE bool MneeTargetsLight(const PathSettings &ps, const Light &light, Vec3f x0) {
+    return MneeTargetsLight(ps.strategy, ps.mneeMaxSolidAngle, light, x0);
+}
+
+// What MNEE may do at a non-specular vertex: add at most `vertices` chain vertices (0: MNEE off),
+// to the lights MneeTargetsLight admits.
+struct MneeBudget {
+    int vertices = 0;
+    Float maxSolidAngle = Infinity;
+};
+// At the vertex of index depth on the path: the vertices maxdepth leaves.
+LU_INLINE MneeBudget MneeAt(const PathSettings &ps, const SceneView &scene, int depth) {
+    MneeBudget b;
+    if (UsesMnee(ps, scene)) {
+        b.vertices = ps.maxDepth - depth;
+        b.maxSolidAngle = ps.mneeMaxSolidAngle;
+    }
+    return b;
+}
 
 // Shadow ray from p (offset along n towards the light) to the point pLight (or to infinity along wi).
 LU_INLINE Ray SpawnShadowRay(const Vec3f &p, const Vec3f &n, const Vec3f &wi, Float distance, const Vec3f &pLight) {
@@ -165,14 +202,15 @@ template <typename Tracer, typename Scatter>
 LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
                                  const LightPick &pick, const Light &light, const LightLiSample &ls,
                                  const SampledWavelengths &lambda, const SceneView &scene, const Tracer &tracer,
-                                 LightStrategy strategy, int budget, PathStats &st) {
+                                 LightStrategy strategy, MneeBudget budget, PathStats &st) {
     if (ls.distance == Infinity) return SampledSpectrum(0);   // distant and infinite lights: no light point
     bool delta = ls.isDelta;
     if (!delta && light.kind != LightKind::DiffuseArea) return SampledSpectrum(0);
+    if (!MneeTargetsLight(strategy, budget.maxSolidAngle, light, ctx.p)) return SampledSpectrum(0);
     MneeChain ch;
     MneeThroughput tp;
     if (!FindMneeChain(scene, tracer, ctx.p, ctx.n, ls.pLight, ls.nLight, lambda, &ch, &tp)) return SampledSpectrum(0);
-    if (ch.k + tp.passThrough > budget) return SampledSpectrum(0);   // longer than maxdepth allows
+    if (ch.k + tp.passThrough > budget.vertices) return SampledSpectrum(0);   // longer than maxdepth allows
     Vec3f w0 = Normalize((ch.k ? ch.v[0].p : ch.y) - ctx.p);
     Vec3f wy = Normalize((ch.k ? ch.v[ch.k - 1].p : ctx.p) - ch.y);   // from the light towards the chain
     SampledSpectrum f = sc.f(wo, w0);
@@ -213,12 +251,12 @@ LU_HD SampledSpectrum SampleMnee(const LightSampleContext &ctx, Vec3f wo, const 
 
 // One light sample at a non-specular vertex (ctx, outgoing direction wo, scattering function sc:
 // SurfaceScatter or PhaseScatter), MIS-weighted against sampling sc, through the media in vm;
-// through a blocking refractive chain of at most mneeBudget vertices by MNEE (0: none).
+// through a blocking refractive chain by MNEE as mnee allows (default: none).
 template <typename Tracer, typename Scatter>
 LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Scatter &sc, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               int mneeBudget = 0, Float beamOneMinusCos = 0, bool beamRegions = false) {
+                               MneeBudget mnee = {}, Float beamOneMinusCos = 0, bool beamRegions = false) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     LightPick pick = PickLight(scene, uLight);
@@ -237,7 +275,7 @@ LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Sc
     Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
     ShadowTransmittance tr;
     if (!ShadowRayVisible(scene, tracer, shadow, vm, ls.wi, lambda, st, &tr))
-        return mneeBudget > 0 ? SampleMnee(ctx, wo, sc, vm, pick, light, ls, lambda, scene, tracer, strategy, mneeBudget, st)
+        return mnee.vertices > 0 ? SampleMnee(ctx, wo, sc, vm, pick, light, ls, lambda, scene, tracer, strategy, mnee, st)
                               : SampledSpectrum(0);
     Float pdfLightW = pick.pmf * ls.pdf;
     SampledSpectrum rL, rU;
@@ -259,9 +297,9 @@ template <typename Tracer>
 LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               int mneeBudget = 0, Float beamOneMinusCos = 0) {
+                               MneeBudget mnee = {}, Float beamOneMinusCos = 0) {
     return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda, sampler, scene, tracer, st,
-                    strategy, mneeBudget, beamOneMinusCos);
+                    strategy, mnee, beamOneMinusCos);
 }
 
 // ---- The vertex record for MIS ----
@@ -353,12 +391,13 @@ LU_INLINE LightPick PickRegularizedCandidate(const SceneView &scene, Vec3f p, co
 // One light sample at a specular vertex among the candidates (total pmf candidatePmf > 0), tested
 // against the cone of every Dirac lobe; each lobe it falls in is weighted against the implicit
 // technique that picks that lobe (with the lobe's probability: lobe-aware MIS) and hits the light.
-// With MNEE on (in: the record of the path so far), a transmission lobe whose path MNEE would have
-// found from the chain's start to the same light point is left to MNEE (weight 0 here).
+// With MNEE on (mnee.vertices > 0; in: the record of the path so far), a transmission lobe whose
+// path MNEE would have found from the chain's start to the same light point, a light MNEE targets
+// from there (MneeTargetsLight), is left to MNEE (weight 0 here).
 template <typename Tracer>
 LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF &bsdf, const SpecularLobe *lobes,
                                         int n, Float candidatePmf, bool deltaOnly, const ScatterVertex &in,
-                                        bool mnee, const VertexMedia &vm, const SampledWavelengths &lambda,
+                                        MneeBudget mnee, const VertexMedia &vm, const SampledWavelengths &lambda,
                                         Sampler &sampler, const SceneView &scene, const Tracer &tracer,
                                         const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
     Float uLight = sampler.Get1D();
@@ -380,8 +419,9 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
     int covered = -1;   // MNEE's verdict on the transmission lobe, computed once when needed
     for (int i = 0; i < n; ++i) {
         if (OneMinusCosBetween(lobes[i].wi, ls.wi) >= oneMinusCos) continue;
-        if (mnee && (lobes[i].flags & BxDF_Transmission) && ls.distance != Infinity &&
-            (ls.isDelta || light.kind == LightKind::DiffuseArea)) {
+        if (mnee.vertices > 0 && (lobes[i].flags & BxDF_Transmission) && ls.distance != Infinity &&
+            (ls.isDelta || light.kind == LightKind::DiffuseArea) &&
+            MneeTargetsLight(strategy, mnee.maxSolidAngle, light, in.chainStart.p)) {
             if (covered < 0) {
                 MneeChain ch;
                 Float tol = 4 * rp.radius + 1e-3f * Distance(in.chainStart.p, si.p);
@@ -433,7 +473,7 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
         *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy,
-                       UsesMnee(ps, scene) ? ps.maxDepth - depth : 0, BeamOneMinusCos(ps.reg));
+                       MneeAt(ps, scene, depth), BeamOneMinusCos(ps.reg));
         return DirectTechnique::LightSample;
     }
     if (!ps.reg.enabled) return DirectTechnique::None;
@@ -444,7 +484,9 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     bool deltaOnly = in.allSpecular;
     Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, ps.reg.radius, deltaOnly, AllowIncompletePDF(ps.strategy));
     if (!(total > 0)) return DirectTechnique::None;
-    *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, UsesMnee(ps, scene), vm, lambda, sampler, scene,
+    // MNEE's verdict there concerns the chain from its start: on wherever the scene uses MNEE.
+    MneeBudget mnee = MneeAt(ps, scene, 0);
+    *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, mnee, vm, lambda, sampler, scene,
                             tracer, ps.reg, ps.strategy, st);
     out->regularized = !deltaOnly;
     out->candidatePmf = total;
@@ -462,7 +504,8 @@ LU_HD bool MneeReproducesHit(const ScatterVertex &v, const SceneView &scene, uin
                              bool atInfinity, const PathSettings &ps, const SampledWavelengths &lambda,
                              const Tracer &tracer, Float *pdfChainA, Float *pdfMneeA) {
     if (!v.specular || v.chainVertices < 0 || atInfinity || !UsesMnee(ps, scene) ||
-        ps.strategy == LightStrategy::BSDFOnly || scene.lights[li].kind != LightKind::DiffuseArea)
+        ps.strategy == LightStrategy::BSDFOnly || scene.lights[li].kind != LightKind::DiffuseArea ||
+        !MneeTargetsLight(ps, scene.lights[li], v.chainStart.p))
         return false;
     if (ps.strategy == LightStrategy::NEEOnly) return true;
     MneeChain ch;
