@@ -228,8 +228,11 @@ std::string SummaryLine(const Prepared &prep, const RenderOutcome &o) {
                   IntegratorName(prep.settings.integrator));
     std::string line = buf;
     if (prep.settings.Regularizes()) {
-        std::snprintf(buf, sizeof buf, "  r0 %.4g  regularized connections %" PRIu64 " (%.2f%% of energy)  MNEE %" PRIu64,
-                      prep.settings.regRadius, s.regConnections,
+        double k = prep.settings.ResolvedRegFootprint();
+        if (k > 0) std::snprintf(buf, sizeof buf, "  footprint %.3g px", k);
+        else std::snprintf(buf, sizeof buf, "  r0 %.4g", prep.settings.ResolvedRegRadius());
+        line += buf;
+        std::snprintf(buf, sizeof buf, "  regularized connections %" PRIu64 " (%.2f%% of energy)  MNEE %" PRIu64, s.regConnections,
                       s.totalEnergy > 0 ? 100.0 * s.regEnergy / s.totalEnergy : 0.0, s.mneeConnections);
         line += buf;
     }
@@ -268,7 +271,8 @@ std::string StatsJson(const Prepared &prep, const RenderOutcome &o) {
         .AddRaw("first_rejected", first.Str())
         .Add("regularized_connections", s.regConnections)
         .Add("mnee_connections", s.mneeConnections)
-        .Add("reg_radius", reg ? rs.regRadius : 0.0)
+        .Add("reg_radius", reg ? rs.ResolvedRegRadius() : 0.0)
+        .Add("reg_footprint_pixels", reg ? rs.ResolvedRegFootprint() : 0.0)
         .Add("reg_lambda", reg ? rs.regLambda : 0.0)
         .Add("reg_angle_degrees", reg ? rs.regAngle : 0.0)
         .Add("regularized_energy_share", s.totalEnergy > 0 ? s.regEnergy / s.totalEnergy : 0.0)

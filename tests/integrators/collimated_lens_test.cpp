@@ -253,7 +253,7 @@ TEST(CollimatedLens, BeamThroughALensIsFoundByTheRegularizedConnection) {
     const double expectedPower = 0.8 / M_PI / 470 * traced.power;
     std::vector<double> pw, off;
     for (int s = 0; s < 8; ++s) {
-        Spot sp = SpotOf(RenderLens(*scene, 0, 128, 3 + 5 * s, scene->settings.regRadius), w, ybar);
+        Spot sp = SpotOf(RenderLens(*scene, 0, 128, 3 + 5 * s, scene->settings.ResolvedRegRadius()), w, ybar);
         pw.push_back(sp.power);
         off.push_back(sp.offset);
     }

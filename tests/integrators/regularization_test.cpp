@@ -345,3 +345,67 @@ TEST(Regularization, GlintOfAnAreaLightInAMirrorIsLeftToThePixelIntegral) {
 }
 
 }  // namespace lu::test
+
+namespace lu::test {
+namespace {
+
+// A spot light at z = 0.5 shining up onto a 20 cm mirror at z = 1 (facing down), over a floor of
+// 2 km (the scene's diagonal: 2.8 km, so r0 = 0.04 x diagonal is 113 m); the floor is lit only
+// through the mirror, a 60 cm patch under it whose middle the camera sees (camera - floor - mirror
+// - spot: the regularized connection's path). `direct`: the same floor under the spot's mirror
+// image, a spot at z = 1.5 shining down (the mirror's reflectance is 1), where NEE alone is exact.
+// 8 x 8 pixels: the kernel's angle is K pixel footprints over the floor-mirror distance, and its
+// success rate grows with its square.
+std::string KilometreMirrorScene(bool direct) {
+    std::string light = direct ? "LightSource \"spot\" \"point3 from\" [ 0 0 1.5 ] \"point3 to\" [ 0 0 0 ] "
+                                 "\"rgb I\" [ 1 1 1 ] \"float coneangle\" [ 30 ] \"float conedelta\" [ 5 ]\n"
+                               : "LightSource \"spot\" \"point3 from\" [ 0 0 0.5 ] \"point3 to\" [ 0 0 1 ] "
+                                 "\"rgb I\" [ 1 1 1 ] \"float coneangle\" [ 30 ] \"float conedelta\" [ 5 ]\n"
+                                 "AttributeBegin\nMaterial \"conductor\" \"rgb reflectance\" [ 1 1 1 ] \"float roughness\" [ 0 ]\n"
+                                 "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" "
+                                 "[ -0.1 -0.1 1  0.1 -0.1 1  0.1 0.1 1  -0.1 0.1 1 ]\nAttributeEnd\n";
+    return "LookAt 0 -1.2 0.6  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 20 ]\n"
+           "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\nPixelFilter \"box\"\n"
+           "WorldBegin\n" + light +
+           "AttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" "
+           "[ -1000 -1000 0  1000 -1000 0  1000 1000 0  -1000 1000 0 ]\nAttributeEnd\n";
+}
+
+}  // namespace
+
+// Issue 12, item 4: r0 = 0.04 x the scene's diagonal blurs the mirrored patch of a kilometre scene
+// by 113 m, so the part in view gets a small fraction of its light; the footprint kernels
+// (--reg-footprint K) blur by at most K N^-1/6 pixels wherever the path's light lands (K = 4
+// here: at most 23 cm on the floor at N = 1, 4 cm at N = 65536), and the middle of the image (4 x 4
+// pixels, 12 cm around the patch's centre) gets what the spot's mirror image gives it there.
+// Per-pixel differences: their spread is the noise alone.
+TEST(Regularization, FootprintKernelsKeepAKilometreSceneSharp) {
+    auto mirror = LoadSceneText("reg_km_mirror", KilometreMirrorScene(false));
+    auto direct = LoadSceneText("reg_km_direct", KilometreMirrorScene(true));
+    EXPECT_GT(mirror->View().camera.pixelSpread, 0.04f);   // 20 degrees over 8 pixels: 0.0436 rad
+    EXPECT_LT(mirror->View().camera.pixelSpread, 0.046f);
+    auto render = [&](const HostScene &scene, bool reg, double footprint, int spp, uint32_t seed) {
+        RenderSettings s = TestSettings(scene, spp, 3, seed);
+        s.integrator = reg ? IntegratorKind::RegPath : IntegratorKind::Path;
+        s.regFootprint = footprint;
+        return RenderScene(scene, s);
+    };
+    Image ref = render(*direct, false, 0, 64, 1).image;
+    auto fp = render(*mirror, true, 4, 65536, 2), world = render(*mirror, true, 0, 256, 3);
+    auto diff = [&](const Image &img) {
+        Image d = img;
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) d.At(x, y, 1) = img.At(x, y, 1) - ref.At(x, y, 1);
+        return RegionMean(d, 1, 2, 2, 6, 6);
+    };
+    MeanSE r = RegionMean(ref, 1, 2, 2, 6, 6), a = diff(fp.image), b = diff(world.image);
+    std::printf("middle of the image: spot's image %.4g; regpath - that: footprint 4 px %+.4g +- %.2g (%llu connections), "
+                "r0 = 0.04 x diagonal %+.4g +- %.2g\n",
+                r.mean, a.mean, a.se, (unsigned long long)fp.stats.regConnections, b.mean, b.se);
+    ASSERT_GT(r.mean, 0.01);
+    EXPECT_LT(std::abs(a.mean), 4 * a.se + 0.05 * r.mean);
+    EXPECT_LT(b.mean, -0.8 * r.mean) << "the world-space default should have blurred the patch away";
+}
+
+}  // namespace lu::test

@@ -15,7 +15,7 @@ TEST(RenderSettings, EverySettingRoundTripsThroughItsText) {
     RenderSettings s;
     const std::pair<const char *, const char *> values[] = {
         {"integrator", "regpath"}, {"maxdepth", "17"},   {"light-strategy", "nee"}, {"reg-radius", "0.25"},
-        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"mnee", "false"},         {"beam-segments", "false"}, {"seed", "4000000000"},
+        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"reg-footprint", "2.5"}, {"mnee", "false"},         {"beam-segments", "false"}, {"seed", "4000000000"},
         {"spp", "300"},
         {"time", "12.5"},          {"threads", "3"},     {"device", "cpu"},         {"tracer", "bvh"},
         {"progress", "false"}};
@@ -89,11 +89,20 @@ TEST(RenderSettings, ReadFromTheScene) {
     EXPECT_EQ(scene->sampler.samplesPerPixel, 8);
     // No radius given: r0 = 0.04 x the bounding-box diagonal (a unit sphere: 0.04 x 2 sqrt 3).
     auto d = LoadSceneText("settings_default", "Integrator \"regpath\"\nWorldBegin\nShape \"sphere\"\n");
-    EXPECT_NEAR(d->settings.regRadius, 0.04 * 2 * std::sqrt(3.0), 1e-6);
+    EXPECT_NEAR(d->settings.ResolvedRegRadius(), 0.04 * 2 * std::sqrt(3.0), 1e-6);
+    // ... and the footprint kernels of 16 pixels; a given radius turns them off, a given footprint
+    // keeps them.
+    EXPECT_DOUBLE_EQ(d->settings.ResolvedRegFootprint(), RenderSettings::kDefaultRegFootprint);
+    EXPECT_DOUBLE_EQ(s.ResolvedRegFootprint(), 0);
+    auto f = LoadSceneText("settings_footprint",
+                           "Integrator \"regpath\" \"float radius\" 0.3 \"float footprint\" 4\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_DOUBLE_EQ(f->settings.ResolvedRegFootprint(), 4);
+    EXPECT_DOUBLE_EQ(f->settings.ResolvedRegRadius(), 0.3);
     // Bad values in the scene are located errors.
     for (const char *bad : {"Integrator \"regpath\" \"float radius\" -1\nWorldBegin\n",
                             "Integrator \"regpath\" \"float lambda\" 2\nWorldBegin\n",
                             "Integrator \"regpath\" \"float angle\" 0\nWorldBegin\n",
+                            "Integrator \"regpath\" \"float footprint\" -2\nWorldBegin\n",
                             "Sampler \"zsobol\" \"string randomization\" \"bogus\"\nWorldBegin\n"}) {
         EXPECT_THROW(LoadSceneText("settings_bad", bad), SceneError) << bad;
     }

@@ -485,6 +485,10 @@ struct CameraData {
     Span<Bounds2f> exitPupilBounds;
     Float filmDiagonal = 0;
     Vec2f physicalExtentMin, physicalExtentMax;
+    // A pixel's footprint near the image centre (SetPixelFootprint): the width of the pixel's ray
+    // cone at distance t from the camera is pixelWidth + pixelSpread * t (world units; spread in
+    // radians). regpath's footprint kernels read it (RegularizationAtVertex).
+    Float pixelWidth = 0, pixelSpread = 0;
 };
 
 enum class FilterKind : uint8_t { Box, Gaussian, Triangle, Mitchell, LanczosSinc };

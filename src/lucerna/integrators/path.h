@@ -51,6 +51,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
     bool inMedia = false;
     const bool beamSegments = UsesBeamSegments(ps, scene);   // the beam techniques in media
     uint32_t crossedBeam = NoIndex;          // the collimated light's disc the ray was continued through
+    Vec3f lastVertex = ray.o;                // the path's last vertex (the camera at first), for its length
     for (int guard = 0; guard < 1024; ++guard) {
         HitRecord hit;
         ++st.rays;
@@ -97,7 +98,10 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
                     NoteBadValue(st, c, RejectCause::Medium, medium, depth);
                     L += c;
                 }
+                Float T = prev.pathLength + Distance(lastVertex, pScatter);
                 SamplePhaseDirection(pScatter, wo, g, beamSegments, sampler, prev, ray);
+                prev.pathLength = prev.receiverT = T;   // a non-specular vertex
+                lastVertex = pScatter;
                 crossedBeam = NoIndex;
                 r.l = r.lChain = r.u;
                 if (!beta.IsFinite()) {
@@ -154,6 +158,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- Explicit techniques at this vertex ----
         bool specular = bsdf.IsSpecular();
         ScatterVertex here = prev;   // becomes this vertex's record (SampleDirect, SampleBSDFDirection)
+        here.pathLength = prev.pathLength + Distance(lastVertex, si.p);
         VertexMedia vm;
         vm.medium = medium;
         vm.shape = &shape;
@@ -176,6 +181,7 @@ LU_HD SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, 
         // ---- BSDF sampling ----
         if (!SampleBSDFDirection(si, bsdf, sampler, beta, etaScale, here, ray)) break;
         prev = here;
+        lastVertex = si.p;
         crossedBeam = NoIndex;
         if (scene.walkInterfaces) {
             medium = MediumAfter(shape, si.n, ray.d, medium);

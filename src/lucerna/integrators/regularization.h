@@ -12,21 +12,53 @@
 
 namespace lu {
 
-// The kernel of one pass (the same for every pixel of the pass).
+// The kernel of one pass, or of one vertex in it. The disc the cone covers at a light point at
+// distance d has radius radius + radiusPerDistance * d.
 struct RegularizationParams {
     bool enabled = false;
-    Float radius = 0;    // r_N for this pass (world units)
-    Float angle = 0;     // sigma_N for this pass (radians), lights at infinity
+    Float radius = 0;             // r_N for this pass (world units)
+    Float radiusPerDistance = 0;  // footprint kernels (RegularizationAtVertex); 0 in a pass's kernel
+    Float angle = 0;              // sigma_N for this pass (radians): lights at infinity, collimated beams
+    Float footprint = 0;          // K N^-lambda: the blur allowed at the receiver, in pixels (0: r_N everywhere)
 };
 
-// Per-pass parameters: r_N = r0 * N^-lambda, sigma_N = sigma0 * N^-lambda, N >= 1.
-LU_INLINE RegularizationParams RegularizationForPass(bool enabled, Float r0, Float sigma0, Float lambda, uint32_t passIndex) {
+// Per-pass parameters: r_N = r0 * N^-lambda, sigma_N = sigma0 * N^-lambda, N >= 1; with a
+// footprint of K pixels (K > 0), K N^-lambda pixels.
+LU_INLINE RegularizationParams RegularizationForPass(bool enabled, Float r0, Float sigma0, Float lambda, uint32_t passIndex,
+                                                     Float footprintPixels = 0) {
     RegularizationParams p;
     p.enabled = enabled;
     Float s = std::pow(Float(passIndex + 1), -lambda);
     p.radius = r0 * s;
     p.angle = sigma0 * s;
+    p.footprint = footprintPixels * s;
     return p;
+}
+
+// The kernel at a specular vertex y from the pass's (footprint kernels; else the pass's own), with
+// T the length of the path from the camera to y and receiverT that to the last non-specular vertex
+// x before y (negative: none, every vertex so far was specular), for a pixel cone of width
+// pixelWidth + pixelSpread * t. The blur it allows is pass.footprint pixels where the path's light
+// lands (the chain between is taken as flat):
+//   - at x: B = K (w0 + a T_x), made by a cone of angle B / s at y (s = T - T_x, the length of the
+//     chain from x to y): a disc of radius B d / s at a light point at distance d;
+//   - from the camera (a light seen through Dirac vertices): the light's image within K pixels,
+//     a disc of radius K (w0 + a (T + d)), the pixel's footprint at the light.
+// Lights at infinity: the cone's angle, atan of the radius per distance. Collimated beams keep the
+// pass's kernel (two kernels, see integrators/collimated.h).
+LU_INLINE RegularizationParams RegularizationAtVertex(const RegularizationParams &pass, Float pixelWidth, Float pixelSpread,
+                                                      Float receiverT, Float T) {
+    if (!(pass.footprint > 0)) return pass;
+    RegularizationParams rp = pass;
+    if (receiverT < 0) {
+        rp.radius = pass.footprint * (pixelWidth + pixelSpread * T);
+        rp.radiusPerDistance = pass.footprint * pixelSpread;
+    } else {
+        Float s = Max(T - receiverT, Float(1e-6) * Max(T, Float(1)));
+        rp.radius = 0;
+        rp.radiusPerDistance = pass.footprint * (pixelWidth + pixelSpread * receiverT) / s;
+    }
+    return rp;
 }
 
 // cos sigma of the cone that covers a disc of radius r at distance d.
@@ -50,21 +82,23 @@ LU_INLINE Float OneMinusCosBetween(const Vec3f &a, const Vec3f &b) { return 0.5f
 
 // The kernel's cap for a light point at distance d (d = Infinity: angular kernel).
 LU_INLINE Float RegularizedOneMinusCos(const RegularizationParams &rp, Float d) {
-    if (d == Infinity) return OneMinusCosAngle(rp.angle);
-    return OneMinusConeCosForDisc(d, rp.radius);
+    if (d == Infinity) return OneMinusCosAngle(rp.radiusPerDistance > 0 ? std::atan(rp.radiusPerDistance) : rp.angle);
+    return OneMinusConeCosForDisc(d, rp.radius + rp.radiusPerDistance * d);
 }
 
 // Conservative culling before sampling a light at a specular vertex p: can a point of the sphere
-// (c, R) lie inside the cone around D for radius r? The cone is widest for the nearest point
-// (cos sigma = d / sqrt(d^2 + r^2) falls with d), so nothing is reachable when the angle from D to
-// c exceeds sigma(d_min) + beta, beta = the sphere's angular radius. In 1 - cos terms (no
-// cancellation for the tiny cones of late passes), with a margin for float rounding.
-LU_INLINE bool RegularizedConeMayReach(const Vec3f &p, const Vec3f &D, const Vec3f &c, Float R, Float r) {
+// (c, R) lie inside the cone around D for the disc radius r + rPerDistance d? The cone is widest for
+// the nearest point (tan sigma = r / d + rPerDistance falls with d), so nothing is reachable when
+// the angle from D to c exceeds sigma(d_min) + beta, beta = the sphere's angular radius. In 1 - cos
+// terms (no cancellation for the tiny cones of late passes), with a margin for float rounding.
+LU_INLINE bool RegularizedConeMayReach(const Vec3f &p, const Vec3f &D, const Vec3f &c, Float R, Float r,
+                                       Float rPerDistance = 0) {
     Vec3f pc = c - p;
     Float L = Length(pc);
     R = R * Float(1.001) + Float(1e-5) * L;
     if (!(L > R)) return true;
     Float dMin = L - R;
+    r += rPerDistance * dMin;
     Float h = std::sqrt(dMin * dMin + r * r);
     Float oneMinusCosS = OneMinusConeCosForDisc(dMin, r), sinS = r / h, cosS = dMin / h;
     Float sinB = R / L, cosB = SafeSqrt(1 - sinB * sinB), oneMinusCosB = sinB * sinB / (1 + cosB);

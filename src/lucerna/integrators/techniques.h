@@ -323,7 +323,21 @@ struct ScatterVertex {
     LightSampleContext chainStart;  // x0
     Float chainBsdfPdfW = 0;        // BSDF sampling's pdf of the direction leaving x0
     Float chainLobePdf = 1;         // product of the lobe selection probabilities since x0
+    // The regularized kernel's footprint (RegularizationAtVertex): the path's length from the
+    // camera to this vertex, and to the last non-specular vertex up to it (-1: none yet).
+    Float pathLength = 0;
+    Float receiverT = -1;
 };
+
+// The regularized kernel at a specular vertex whose path has length T from the camera, after the
+// non-specular vertex at length receiverT (-1: none). A footprint kernel when the pass has one.
+LU_INLINE RegularizationParams VertexRegularization(const PathSettings &ps, const SceneView &scene, Float receiverT, Float T) {
+    return RegularizationAtVertex(ps.reg, scene.camera.pixelWidth, scene.camera.pixelSpread, receiverT, T);
+}
+// ... at the specular vertex v was recorded at (the emitter-hit side of the MIS).
+LU_INLINE RegularizationParams VertexRegularization(const PathSettings &ps, const SceneView &scene, const ScatterVertex &v) {
+    return VertexRegularization(ps, scene, v.receiverT, v.pathLength);
+}
 
 // Whether MNEE from the chain start of `in` to light point y (normal nY) finds the chain of the
 // path that continues through specular vertex si along a transmission (refractive: a dielectric,
@@ -350,7 +364,8 @@ LU_HD bool MneeCoversPath(const ScatterVertex &in, const SurfaceInteraction &si,
 // sampling) that some lobe's cone can reach (conservative test on the light's bounding sphere;
 // lights without bounds always). The emitter-hit weight uses the same pmf: LightPMF / total.
 LU_INLINE bool RegularizedCandidate(const SceneView &scene, uint32_t li, Vec3f p, const SpecularLobe *lobes, int n,
-                                    Float radius, bool deltaOnly, bool allowIncompletePDF) {
+                                    const RegularizationParams &rp, const RegularizationParams &passRp, bool deltaOnly,
+                                    bool allowIncompletePDF) {
     const Light &light = scene.lights[li];
     // A collimated beam is a candidate after a non-specular vertex only (the regularized beam
     // connection, two kernels: SampleRegularized); from the camera through Dirac lobes the
@@ -360,24 +375,31 @@ LU_INLINE bool RegularizedCandidate(const SceneView &scene, uint32_t li, Vec3f p
     if (allowIncompletePDF && light.kind == LightKind::UniformInfinite) return false;
     if (light.boundRadius < 0) return true;
     for (int i = 0; i < n; ++i)
-        if (RegularizedConeMayReach(p, lobes[i].wi, light.boundCenter, light.boundRadius, radius)) return true;
+        if (light.kind == LightKind::Collimated
+                ? RegularizedConeMayReach(p, lobes[i].wi, light.boundCenter, light.boundRadius, passRp.radius)
+                : RegularizedConeMayReach(p, lobes[i].wi, light.boundCenter, light.boundRadius, rp.radius,
+                                          rp.radiusPerDistance))
+            return true;
     return false;
 }
 // The total pmf of the candidates (0: none).
-LU_INLINE Float RegularizedCandidatePmf(const SceneView &scene, Vec3f p, const SpecularLobe *lobes, int n, Float radius,
+LU_INLINE Float RegularizedCandidatePmf(const SceneView &scene, Vec3f p, const SpecularLobe *lobes, int n,
+                                        const RegularizationParams &rp, const RegularizationParams &passRp,
                                         bool deltaOnly, bool allowIncompletePDF) {
     Float total = 0;
     for (uint32_t li = 0; li < scene.lights.size; ++li)
-        if (RegularizedCandidate(scene, li, p, lobes, n, radius, deltaOnly, allowIncompletePDF)) total += LightPMF(scene, li);
+        if (RegularizedCandidate(scene, li, p, lobes, n, rp, passRp, deltaOnly, allowIncompletePDF))
+            total += LightPMF(scene, li);
     return total;
 }
 // Picks a candidate with probability LightPMF / total (u in [0, 1)).
 LU_INLINE LightPick PickRegularizedCandidate(const SceneView &scene, Vec3f p, const SpecularLobe *lobes, int n,
-                                             Float radius, bool deltaOnly, bool allowIncompletePDF, Float total, Float u) {
+                                             const RegularizationParams &rp, const RegularizationParams &passRp,
+                                             bool deltaOnly, bool allowIncompletePDF, Float total, Float u) {
     LightPick pick;
     Float target = u * total, run = 0;
     for (uint32_t li = 0; li < scene.lights.size; ++li) {
-        if (!RegularizedCandidate(scene, li, p, lobes, n, radius, deltaOnly, allowIncompletePDF)) continue;
+        if (!RegularizedCandidate(scene, li, p, lobes, n, rp, passRp, deltaOnly, allowIncompletePDF)) continue;
         Float pmf = LightPMF(scene, li);
         if (pmf <= 0) continue;
         pick.light = li;
@@ -399,18 +421,20 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
                                         int n, Float candidatePmf, bool deltaOnly, const ScatterVertex &in,
                                         MneeBudget mnee, const VertexMedia &vm, const SampledWavelengths &lambda,
                                         Sampler &sampler, const SceneView &scene, const Tracer &tracer,
-                                        const RegularizationParams &rp, LightStrategy strategy, PathStats &st) {
+                                        const RegularizationParams &rp, const RegularizationParams &passRp,
+                                        LightStrategy strategy, PathStats &st) {
     Float uLight = sampler.Get1D();
     Vec2f u2 = sampler.Get2D();
     bool allowIncomplete = AllowIncompletePDF(strategy);
-    LightPick pick = PickRegularizedCandidate(scene, si.p, lobes, n, rp.radius, deltaOnly, allowIncomplete,
+    LightPick pick = PickRegularizedCandidate(scene, si.p, lobes, n, rp, passRp, deltaOnly, allowIncomplete,
                                               candidatePmf, uLight);
     if (pick.light == NoIndex || pick.pmf == 0) return SampledSpectrum(0);
     const Light &light = scene.lights[pick.light];
     LightLiSample ls;
-    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, allowIncomplete, &ls, BeamOneMinusCos(rp)))
+    if (!SampleLightPoint(scene, light, MakeLightContext(si), u2, lambda, allowIncomplete, &ls, BeamOneMinusCos(passRp)))
         return SampledSpectrum(0);
-    Float oneMinusCos = RegularizedOneMinusCos(rp, ls.distance);
+    // rp: this vertex's kernel (RegularizationAtVertex); a collimated beam keeps the pass's (BeamHitWeight).
+    Float oneMinusCos = RegularizedOneMinusCos(light.kind == LightKind::Collimated ? passRp : rp, ls.distance);
     Float pdfConeW = ConePdfW(oneMinusCos);
     Float pdfLightW = ls.isDelta ? Infinity : pick.pmf * ls.pdf;
     // f_reg |cos| / p = weight * phi / pdf per lobe; for delta lights the "pdf" is the pmf alone.
@@ -424,7 +448,7 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
             MneeTargetsLight(strategy, mnee.maxSolidAngle, light, in.chainStart.p)) {
             if (covered < 0) {
                 MneeChain ch;
-                Float tol = 4 * rp.radius + 1e-3f * Distance(in.chainStart.p, si.p);
+                Float tol = 4 * (rp.radius + rp.radiusPerDistance * ls.distance) + 1e-3f * Distance(in.chainStart.p, si.p);
                 covered = MneeCoversPath(in, si, bsdf.kind == BxDFKind::Dielectric, ls.pLight, ls.nLight, tol, lambda,
                                          scene, tracer, &ch) ? 1 : 0;
             }
@@ -482,12 +506,13 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
     // Selectivity: after Dirac vertices only (from the camera) the pixel integral samples the paths
     // to area and infinite lights without bias; only delta lights need the technique there.
     bool deltaOnly = in.allSpecular;
-    Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, ps.reg.radius, deltaOnly, AllowIncompletePDF(ps.strategy));
+    RegularizationParams rp = VertexRegularization(ps, scene, in.receiverT, out->pathLength);
+    Float total = RegularizedCandidatePmf(scene, si.p, lobes, n, rp, ps.reg, deltaOnly, AllowIncompletePDF(ps.strategy));
     if (!(total > 0)) return DirectTechnique::None;
     // MNEE's verdict there concerns the chain from its start: on wherever the scene uses MNEE.
     MneeBudget mnee = MneeAt(ps, scene, 0);
     *Ld = SampleRegularized(si, bsdf, lobes, n, total, deltaOnly, in, mnee, vm, lambda, sampler, scene,
-                            tracer, ps.reg, ps.strategy, st);
+                            tracer, rp, ps.reg, ps.strategy, st);
     out->regularized = !deltaOnly;
     out->candidatePmf = total;
     return DirectTechnique::Regularized;
@@ -542,7 +567,7 @@ LU_HD Float EmitterHitWeightInMedia(const ScatterVertex &v, const SceneView &sce
     if (v.specular) {
         pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
-        Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d));   // lobe-aware
+        Float pdfConeW = v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(VertexRegularization(ps, scene, v), d));   // lobe-aware
         return RegularizedHitWeight(pdfConeW, r.l[0] * pdfLightW) * WavelengthWeight(r.u, pdfConeW, r.l, pdfLightW, lambda);
     }
     if (ps.strategy == LightStrategy::NEEOnly) return 0;
@@ -571,7 +596,8 @@ LU_HD Float EmitterHitWeight(const ScatterVertex &v, const SceneView &scene, uin
     if (v.specular) {   // lobe-aware: the implicit technique picked this Dirac lobe with probability pdfBsdfW
         pdfLightW /= v.candidatePmf;   // the connection chose among candidates only
         Float d = atInfinity ? Infinity : Distance(v.ctx.p, pLight);
-        return RegularizedHitWeight(v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(ps.reg, d)), pdfLightW);
+        return RegularizedHitWeight(v.pdfBsdfW * ConePdfW(RegularizedOneMinusCos(VertexRegularization(ps, scene, v), d)),
+                                    pdfLightW);
     }
     return BSDFHitWeight(ps.strategy, v.pdfBsdfW, pdfLightW);
 }
@@ -611,6 +637,7 @@ LU_INLINE bool SampleBSDFDirection(const SurfaceInteraction &si, const BSDF &bsd
         }
     }
     v.allSpecular = v.allSpecular && v.specular;
+    if (!v.specular) v.receiverT = v.pathLength;   // where a later regularized kernel's blur lands
     v.regularized = v.specular && v.regularized;
     v.ctx = MakeLightContext(si);
     if (bs.IsTransmission()) etaScale *= Sqr(bs.eta);

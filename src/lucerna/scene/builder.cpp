@@ -513,6 +513,9 @@ void BuildIntegrator(BuildContext &ctx) {
         rs.regLambda = p.GetOneFloat("lambda", rs.regLambda);
         rs.regAngle = p.GetOneFloat("angle", 2);
         if (p.Has("radius") && !(rs.regRadius > 0)) Fail(ParamLoc(p, "radius", e.loc), "\"radius\" must be positive");
+        rs.regFootprint = p.GetOneFloat("footprint", -1);
+        if (p.Has("footprint") && !(rs.regFootprint >= 0 && rs.regFootprint <= 1e6))
+            Fail(ParamLoc(p, "footprint", e.loc), "\"footprint\" must be in [0, 1e6] pixels");
         if (!(rs.regLambda >= 0 && rs.regLambda <= 1)) Fail(ParamLoc(p, "lambda", e.loc), "\"lambda\" must be in [0, 1]");
         if (!(rs.regAngle > 0 && rs.regAngle <= 90)) Fail(ParamLoc(p, "angle", e.loc), "\"angle\" must be in (0, 90] degrees");
     } else if (OneOf(e.name, {"volpath", "bdpt", "mlt", "sppm", "lightpath", "simplepath", "simplevolpath", "randomwalk"})) {
@@ -553,6 +556,14 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
         BuildFilm(ctx, ExposureTime(ctx));
         scene->film.disableWavelengthJitter = ctx.sceneOptions.disableWavelengthJitter;
         ctx.Collect([&] { BuildCamera(ctx); });
+        {   // through the scene's lens arrays (the realistic camera's)
+            CameraData c = scene->camera;
+            c.lensElements = SpanOf(scene->lensElements);
+            c.exitPupilBounds = SpanOf(scene->exitPupilBounds);
+            SetPixelFootprint(c);
+            scene->camera.pixelWidth = c.pixelWidth;
+            scene->camera.pixelSpread = c.pixelSpread;
+        }
         BuildSampler(ctx);
         ctx.Collect([&] { BuildIntegrator(ctx); });
 
@@ -573,9 +584,8 @@ std::unique_ptr<HostScene> BuildScene(const SceneDescription &desc, Diagnostics 
         throw;
     }
     throwCollected(nullptr);
-    // regpath's default r0 (chosen by bench/reg_radius.sh, see docs/regularization.md).
-    if (!(scene->settings.regRadius > 0))
-        scene->settings.regRadius = scene->bounds.Empty() ? 0.01 : 0.04 * Length(scene->bounds.Diagonal());
+    // regpath's auto r0 (0.04 x this, RenderSettings::ResolvedRegRadius).
+    scene->settings.sceneDiagonal = scene->bounds.Empty() ? 0 : Length(scene->bounds.Diagonal());
     return scene;
 }
 

@@ -89,4 +89,27 @@ CameraData MakeSphericalCamera(const Transform &renderFromCamera, int width, int
     return c;
 }
 
+
+void SetPixelFootprint(CameraData &c) {
+    c.pixelWidth = 0;
+    c.pixelSpread = 1 / Float(Max(1, Max(c.width, c.height)));   // if no ray gets through: a radian per image
+    Vec2f centre(Float(c.width) / 2, Float(c.height) / 2);
+    const Vec2f lens[] = {Vec2f(0.5f, 0.5f), Vec2f(0.3f, 0.5f), Vec2f(0.5f, 0.3f), Vec2f(0.7f, 0.6f)};
+    for (Vec2f uLens : lens) {
+        Ray r0, rx, ry;
+        if (!GenerateRay(c, centre, uLens, &r0) || !GenerateRay(c, centre + Vec2f(1, 0), uLens, &rx) ||
+            !GenerateRay(c, centre + Vec2f(0, 1), uLens, &ry))
+            continue;
+        Vec3f d0 = Normalize(r0.d);
+        auto angle = [&](const Ray &r) { return 2 * std::asin(Min(Float(1), Length(Normalize(r.d) - d0) / 2)); };
+        auto offset = [&](const Ray &r) {   // the origins' offset across the central ray
+            Vec3f o = r.o - r0.o;
+            return Length(o - d0 * Dot(o, d0));
+        };
+        c.pixelSpread = Max(angle(rx), angle(ry));
+        c.pixelWidth = Max(offset(rx), offset(ry));
+        if (c.lensRadius > 0) c.pixelWidth = 0;   // the thin lens's origins move with the lens sample, not the pixel
+        return;
+    }
+}
 }  // namespace lu

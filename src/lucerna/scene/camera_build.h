@@ -27,6 +27,10 @@ CameraData MakeOrthographicCamera(const Transform &renderFromCamera, int width, 
 // pbrt-v4's spherical camera: equal-area (kind SphericalEqualArea) or equirectangular mapping of
 // the whole image to the sphere of directions.
 CameraData MakeSphericalCamera(const Transform &renderFromCamera, int width, int height, CameraKind kind);
+// Sets c.pixelWidth and c.pixelSpread from the rays through the image centre and its neighbours
+// one pixel over (through the lens centre; for a realistic camera the first lens position that
+// gets through): the larger of the two directions' angles and origins' offsets.
+void SetPixelFootprint(CameraData &c);
 
 // One row of a realistic camera's lens table as the file gives it (millimeters) and where it is.
 struct LensTableRow {

@@ -12,7 +12,8 @@ PathSettings RenderSettings::ForPass(uint32_t pass) const {
     PathSettings ps;
     ps.maxDepth = maxDepth;
     ps.strategy = lightStrategy;
-    ps.reg = RegularizationForPass(Regularizes(), Float(regRadius), Float(regAngle * M_PI / 180), Float(regLambda), pass);
+    ps.reg = RegularizationForPass(Regularizes(), Float(ResolvedRegRadius()), Float(regAngle * M_PI / 180),
+                                   Float(regLambda), pass, Float(ResolvedRegFootprint()));
     ps.mnee = Regularizes() && mnee;
     ps.beamSegments = Regularizes() && beamSegments;
     return ps;
@@ -120,9 +121,10 @@ void ForEachSetting(S &s, F &&f) {
     f(info[i++], s.integrator, any);
     f(info[i++], s.maxDepth, range(0, 100000));
     f(info[i++], s.lightStrategy, any);
-    f(info[i++], s.regRadius, range(0.0, 1e30, true));   // the builder resolves the default
+    f(info[i++], s.regRadius, range(0.0, 1e30, true));   // 0: auto (ResolvedRegRadius)
     f(info[i++], s.regLambda, range(0.0, 1.0));
     f(info[i++], s.regAngle, range(0.0, 90.0, true));
+    f(info[i++], s.regFootprint, range(0.0, 1e6));       // -1: auto (ResolvedRegFootprint)
     f(info[i++], s.mnee, any);
     f(info[i++], s.beamSegments, any);
     f(info[i++], s.seed, any);
@@ -141,9 +143,10 @@ const std::vector<SettingInfo> &RenderSettingInfos() {
         {"integrator", "path or regpath (default: the scene's Integrator, else path)", true},
         {"maxdepth", "maximum path depth (default: the scene's, else 5)", true},
         {"light-strategy", "direct-light techniques: mis, nee or bsdf (diagnosis; default mis)", true},
-        {"reg-radius", "regpath: initial radius r0 in world units (default: 0.04 x the scene's diagonal)", true},
+        {"reg-radius", "regpath: initial radius r0 in world units (default auto: 0.04 x the scene's diagonal; given, it turns the footprint kernels off unless --reg-footprint is given too)", true},
         {"reg-lambda", "regpath: shrink exponent lambda, r_N = r0 N^-lambda (default 1/6; 1/8 in scenes with a collimated light)", true},
         {"reg-angle", "regpath: initial angle sigma0 in degrees for lights at infinity (default 2)", true},
+        {"reg-footprint", "regpath: kernels from the pixel's footprint, blurring by at most K N^-lambda pixels (default auto: 16 unless a radius is given; 0: r0 everywhere)", true},
         {"mnee", "regpath: manifold next-event estimation through refractive chains (true or false; default true)", true},
         {"beam-segments", "regpath: collimated beams in media sampled along ray segments (true or false; default true)", true},
         {"seed", "random seed (default: the scene's Sampler \"seed\", else 0)", true},
@@ -157,7 +160,17 @@ const std::vector<SettingInfo> &RenderSettingInfos() {
     return infos;
 }
 
+// "auto" for a setting the scene resolves (reg-radius 0, reg-footprint -1).
+bool IsAutoSetting(const RenderSettings &s, const char *name) {
+    return (!std::strcmp(name, "reg-radius") && !(s.regRadius > 0)) || (!std::strcmp(name, "reg-footprint") && s.regFootprint < 0);
+}
+
 bool SetRenderSetting(RenderSettings &s, const std::string &name, const std::string &value, std::string *error) {
+    if (value == "auto" && (name == "reg-radius" || name == "reg-footprint")) {
+        if (name == "reg-radius") s.regRadius = 0;
+        else s.regFootprint = -1;
+        return true;
+    }
     bool found = false, ok = false;
     ForEachSetting(s, [&](const SettingInfo &info, auto &field, auto check) {
         if (found || name != info.name) return;
@@ -175,7 +188,7 @@ bool SetRenderSetting(RenderSettings &s, const std::string &name, const std::str
 std::string RenderSettingValue(const RenderSettings &s, const std::string &name) {
     std::string out;
     ForEachSetting(s, [&](const SettingInfo &info, const auto &field, auto) {
-        if (name == info.name) out = Format(field);
+        if (name == info.name) out = IsAutoSetting(s, info.name) ? "auto" : Format(field);
     });
     return out;
 }
@@ -183,7 +196,7 @@ std::string RenderSettingValue(const RenderSettings &s, const std::string &name)
 std::string DescribeRenderSettings(const RenderSettings &s) {
     std::string out;
     ForEachSetting(s, [&](const SettingInfo &info, const auto &field, auto) {
-        out += (out.empty() ? "" : ", ") + std::string(info.name) + " " + Format(field);
+        out += (out.empty() ? "" : ", ") + std::string(info.name) + " " + (IsAutoSetting(s, info.name) ? "auto" : Format(field));
     });
     return out;
 }

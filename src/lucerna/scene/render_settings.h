@@ -22,9 +22,11 @@ struct RenderSettings {
     IntegratorKind integrator = IntegratorKind::Path;
     int maxDepth = 5;                       // "maxdepth"
     LightStrategy lightStrategy = LightStrategy::MIS;   // direct-light techniques (tests, diagnosis)
-    double regRadius = 0;                   // "radius": r0 in world units; 0 = 0.04 x the scene's diagonal
+    double regRadius = 0;                   // "radius": r0 in world units; 0 (auto): 0.04 x the scene's diagonal
     double regLambda = 1.0 / 6;             // "lambda": r_N = r0 N^-lambda
     double regAngle = 2;                    // "angle": sigma0 in degrees, for lights at infinity
+    double regFootprint = -1;               // "footprint": K pixels, kernels from the pixel's footprint (0: off;
+                                            // -1, auto: kDefaultRegFootprint unless a radius is given, else 0)
     bool mnee = true;                       // "mnee": regpath adds manifold NEE through refractive chains
     bool beamSegments = true;               // "beam-segments": regpath samples beams in media along ray segments
     // ---- Sampling: the scene's Sampler directive ----
@@ -37,7 +39,17 @@ struct RenderSettings {
     CpuTracer cpuTracer = CpuTracer::Embree;
     bool progress = true;                   // progress line on stderr
 
+    // Not a setting: the scene's bounding-box diagonal (the builder), for the auto radius.
+    double sceneDiagonal = 0;
+
     bool Regularizes() const { return integrator == IntegratorKind::RegPath; }
+    // r0 in world units: the given radius, else 0.04 x the scene's diagonal (bench/reg_radius.sh).
+    // Collimated beams always use it; the other lights when the footprint is 0.
+    double ResolvedRegRadius() const { return regRadius > 0 ? regRadius : sceneDiagonal > 0 ? 0.04 * sceneDiagonal : 0.01; }
+    // K in pixels (0: world-space kernels of radius r0): the given footprint, else the default
+    // when no radius is given (bench/reg_footprint.sh, docs/regularization.md).
+    double ResolvedRegFootprint() const { return regFootprint >= 0 ? regFootprint : regRadius > 0 ? 0 : kDefaultRegFootprint; }
+    static constexpr double kDefaultRegFootprint = 16;
     // What the per-path code sees in pass `pass` (0-based): r_N and sigma_N of that pass.
     PathSettings ForPass(uint32_t pass) const;
 };
