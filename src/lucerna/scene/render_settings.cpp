@@ -196,7 +196,12 @@ std::string RenderSettingValue(const RenderSettings &s, const std::string &name)
 std::string DescribeRenderSettings(const RenderSettings &s) {
     std::string out;
     ForEachSetting(s, [&](const SettingInfo &info, const auto &field, auto) {
-        out += (out.empty() ? "" : ", ") + std::string(info.name) + " " + (IsAutoSetting(s, info.name) ? "auto" : Format(field));
+        std::string value = Format(field);
+        if (IsAutoSetting(s, info.name)) {   // with what it resolves to
+            double resolved = std::strcmp(info.name, "reg-radius") ? s.ResolvedRegFootprint() : s.ResolvedRegRadius();
+            value = "auto (" + Format(resolved) + ")";
+        }
+        out += (out.empty() ? "" : ", ") + std::string(info.name) + " " + value;
     });
     return out;
 }
