@@ -66,6 +66,18 @@ std::vector<AnalyticScene> AnalyticScenes() {
              "AreaLightSource \"diffuse\" \"rgb L\" [ 0.5 0.5 0.5 ]\nReverseOrientation\n"
              "Shape \"sphere\" \"float radius\" [ 1 ]\n",
          64, 200, 0, 0, 24, 24, 1.0, 0.01},
+        // ... with a non-absorbing glass ball inside (0.35 off the camera): the radiance is still 1
+        // everywhere. Under regpath the diffuse wall's paths through the ball reach the emitter by
+        // the regularized connection (the footprint kernel of each glass vertex) and by BSDF
+        // sampling, and MIS weights that did not read one kernel on both sides would miss the 1.
+        {"InsideEmittingDiffuseSphereWithGlassBall",
+         CameraHeader(24, 90, 64, 200) +
+             "WorldBegin\nAttributeBegin\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+             "AreaLightSource \"diffuse\" \"rgb L\" [ 0.5 0.5 0.5 ]\nReverseOrientation\n"
+             "Shape \"sphere\" \"float radius\" [ 1 ]\nAttributeEnd\n"
+             "AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0 0 0.52\n"
+             "Shape \"sphere\" \"float radius\" [ 0.45 ]\nAttributeEnd\n",
+         64, 200, 0, 0, 24, 24, 1.0, 0.01},
         // Open white furnace: a convex diffuse object of albedo 0.8 under a uniform environment of
         // radiance 1 reflects exactly 0.8.
         {"FurnaceDiffuseSphere",
@@ -200,6 +212,27 @@ TEST(Integrator, ThreadCountIndependent) {
     EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(float)));
     auto c = RenderScene(*scene, 8, 8, 43, 2);
     EXPECT_NE(0, std::memcmp(a.image.pixels.data(), c.image.pixels.data(), a.image.pixels.size() * sizeof(float)));
+}
+
+// The footprint kernel read on both sides of the MIS: inside the emitting sphere with a glass ball
+// (InsideEmittingDiffuseSphereWithGlassBall, radiance 1 everywhere) at K = 1, 4 and 64 pixels,
+// where the regularized connection and the implicit hit share the ball's paths in very different
+// proportions; each must still render 1.
+TEST(IntegratorAnalyticFootprint, EveryKernelWidthKeepsTheFurnace) {
+    AnalyticScene sc;
+    for (const AnalyticScene &a : AnalyticScenes())
+        if (std::string(a.name) == "InsideEmittingDiffuseSphereWithGlassBall") sc = a;
+    ASSERT_FALSE(sc.text.empty());
+    auto scene = LoadSceneText("analytic_footprint", sc.text);
+    for (double k : {1.0, 4.0, 64.0}) {
+        RenderSettings s = TestSettings(*scene, sc.spp, sc.maxDepth, 9);
+        s.integrator = IntegratorKind::RegPath;
+        s.regFootprint = k;
+        RenderResultForTest r = RenderScene(*scene, s);
+        EXPECT_GT(r.stats.regConnections, 0u);
+        MeanSE m = RegionMean(r.image, 1, sc.x0, sc.y0, sc.x1, sc.y1);
+        EXPECT_NEAR(m.mean, sc.expected, 4 * m.se + sc.slack) << "K " << k << ", se " << m.se;
+    }
 }
 
 }  // namespace lu::test
