@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=${1:-build}
-cmake --build "$BUILD" --target test_gpu -j"$(nproc)" >/dev/null
+[ -n "${SKIP_BUILD:-}" ] || cmake --build "$BUILD" --target test_gpu -j"$(nproc)" >/dev/null  # SKIP_BUILD=1: binaries built elsewhere (bench/gpu/device_check.sh)
 "$BUILD/tests/test_gpu" --gtest_also_run_disabled_tests \
     --gtest_filter='BVHSharedScenes.MatchEmbree:BVHSharedScenes.DISABLED_CpuThroughput:GpuBVH.DISABLED_RaysPerSecond' \
     | grep -E '^\[ (bvh|cpu Mr/s|rays/s) ' || true

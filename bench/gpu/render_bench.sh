@@ -16,7 +16,7 @@ RES=${RES:-512x512}
 SPP=${SPP:-16}
 CPU_SPP=${CPU_SPP:-$SPP}
 INTEGRATOR=${INTEGRATOR:-path}
-cmake --build "$BUILD" --target lucerna -j"$(nproc)" >/dev/null
+[ -n "${SKIP_BUILD:-}" ] || cmake --build "$BUILD" --target lucerna -j"$(nproc)" >/dev/null  # SKIP_BUILD=1: binaries built elsewhere (bench/gpu/device_check.sh)
 BIN="$BUILD/lucerna"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
