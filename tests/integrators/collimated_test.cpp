@@ -345,7 +345,9 @@ TEST(Collimated, BeamRegionIntervalMatchesTheRegion) {
     RNG rng(7, 11);
     for (Float omc : {OneMinusCosAngle(Float(0.2)), Float(1)}) {
         Float rc = BeamRegionRadius(l, omc);
-        if (omc == 1) EXPECT_EQ(rc, Infinity);
+        if (omc == 1) {
+            EXPECT_EQ(rc, Infinity);
+        }
         int crossed = 0, bad = 0;
         for (int i = 0; i < 2000; ++i) {
             Vec3f o(rng.Uniform<Float>() * 4 - 2, rng.Uniform<Float>() * 4 - 2, rng.Uniform<Float>() * 4 - 2);

@@ -15,7 +15,7 @@ TEST(RenderSettings, EverySettingRoundTripsThroughItsText) {
     RenderSettings s;
     const std::pair<const char *, const char *> values[] = {
         {"integrator", "regpath"}, {"maxdepth", "17"},   {"light-strategy", "nee"}, {"reg-radius", "0.25"},
-        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"reg-footprint", "2.5"}, {"mnee", "false"},         {"beam-segments", "false"}, {"seed", "4000000000"},
+        {"reg-lambda", "0.2"},     {"reg-angle", "3.5"}, {"reg-footprint", "2.5"}, {"mnee", "false"},         {"beam-segments", "false"}, {"near-specular", "false"}, {"seed", "4000000000"},
         {"spp", "300"},
         {"time", "12.5"},          {"threads", "3"},     {"device", "cpu"},         {"tracer", "bvh"},
         {"progress", "false"}};
@@ -62,7 +62,7 @@ TEST(RenderSettings, HashFollowsTheImageSettingsOnly) {
         else if (std::string(info.name) == "device") w = "cuda";
         else if (std::string(info.name) == "tracer") w = "bvh";
         else if (std::string(info.name) == "progress" || std::string(info.name) == "mnee" ||
-                 std::string(info.name) == "beam-segments")
+                 std::string(info.name) == "beam-segments" || std::string(info.name) == "near-specular")
             w = "false";
         else if (std::string(info.name) == "reg-lambda") w = "0.5";
         else w = "7";
@@ -98,6 +98,13 @@ TEST(RenderSettings, ReadFromTheScene) {
                            "Integrator \"regpath\" \"float radius\" 0.3 \"float footprint\" 4\nWorldBegin\nShape \"sphere\"\n");
     EXPECT_DOUBLE_EQ(f->settings.ResolvedRegFootprint(), 4);
     EXPECT_DOUBLE_EQ(f->settings.ResolvedRegRadius(), 0.3);
+    // The techniques regpath adds, off from the scene.
+    EXPECT_TRUE(d->settings.mnee);
+    EXPECT_TRUE(d->settings.nearSpecular);
+    auto t = LoadSceneText("settings_techniques",
+                           "Integrator \"regpath\" \"bool mnee\" false \"bool near-specular\" false\nWorldBegin\nShape \"sphere\"\n");
+    EXPECT_FALSE(t->settings.mnee);
+    EXPECT_FALSE(t->settings.nearSpecular);
     // Bad values in the scene are located errors.
     for (const char *bad : {"Integrator \"regpath\" \"float radius\" -1\nWorldBegin\n",
                             "Integrator \"regpath\" \"float lambda\" 2\nWorldBegin\n",

@@ -80,9 +80,15 @@ LU_INLINE Float OneMinusCosAngle(Float sigma) { return 2 * Sqr(std::sin(sigma / 
 // 1 - cos of the angle between unit vectors a and b, accurate for small angles: |a - b|^2 / 2.
 LU_INLINE Float OneMinusCosBetween(const Vec3f &a, const Vec3f &b) { return 0.5f * LengthSquared(a - b); }
 
+// The kernel's half-angle for lights at infinity: atan of the radius per distance for footprint
+// kernels, else the pass's sigma_N.
+LU_INLINE Float RegularizedAngle(const RegularizationParams &rp) {
+    return rp.radiusPerDistance > 0 ? std::atan(rp.radiusPerDistance) : rp.angle;
+}
+
 // The kernel's cap for a light point at distance d (d = Infinity: angular kernel).
 LU_INLINE Float RegularizedOneMinusCos(const RegularizationParams &rp, Float d) {
-    if (d == Infinity) return OneMinusCosAngle(rp.radiusPerDistance > 0 ? std::atan(rp.radiusPerDistance) : rp.angle);
+    if (d == Infinity) return OneMinusCosAngle(RegularizedAngle(rp));
     return OneMinusConeCosForDisc(d, rp.radius + rp.radiusPerDistance * d);
 }
 

@@ -26,6 +26,7 @@ struct PathSettings {
     bool mnee = false;          // manifold NEE through refractive chains (integrators/mnee.h)
     Float mneeMaxSolidAngle = 0.01f;   // ... to area lights subtending less than this (sr) from the chain's start
     bool beamSegments = false;  // collimated beams in media: the beam-segment technique (integrators/collimated.h)
+    bool nearSpecular = false;  // near-specular microfacet lobes widened for delta lights (NearSpecularBsdf)
 };
 
 // MNEE applies in this scene: the setting is on and some material can refract or pass light.
@@ -98,7 +99,9 @@ LU_INLINE LightSampleContext MakeLightContext(const SurfaceInteraction &si) {
 struct SurfaceScatter {
     const BSDF &bsdf;
     Vec3f ns;
+    const BSDF *deltaBsdf = nullptr;   // the BSDF delta lights see, when not bsdf (NearSpecularBsdf)
     LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return bsdf.f(wo, wi) * AbsDot(wi, ns); }
+    LU_HD SampledSpectrum fDelta(Vec3f wo, Vec3f wi) const { return (deltaBsdf ? *deltaBsdf : bsdf).f(wo, wi) * AbsDot(wi, ns); }
     LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return bsdf.PDF(wo, wi); }
 };
 
@@ -107,6 +110,7 @@ struct SurfaceScatter {
 struct PhaseScatter {
     Float g = 0;
     LU_HD SampledSpectrum f(Vec3f wo, Vec3f wi) const { return SampledSpectrum(HenyeyGreenstein(Dot(wo, wi), g)); }
+    LU_HD SampledSpectrum fDelta(Vec3f wo, Vec3f wi) const { return f(wo, wi); }
     LU_HD Float PDF(Vec3f wo, Vec3f wi) const { return HenyeyGreenstein(Dot(wo, wi), g); }
 };
 
@@ -270,7 +274,7 @@ LU_HD SampledSpectrum SampleLd(const LightSampleContext &ctx, Vec3f wo, const Sc
     LightLiSample ls;
     if (!SampleLightPoint(scene, light, ctx, u2, lambda, AllowIncompletePDF(strategy), &ls, beamOneMinusCos))
         return SampledSpectrum(0);
-    SampledSpectrum f = sc.f(wo, ls.wi);
+    SampledSpectrum f = ls.isDelta ? sc.fDelta(wo, ls.wi) : sc.f(wo, ls.wi);
     if (f.IsBlack()) return SampledSpectrum(0);
     Ray shadow = SpawnShadowRay(ctx.p, ctx.n, ls.wi, ls.distance, ls.pLight);
     ShadowTransmittance tr;
@@ -297,9 +301,9 @@ template <typename Tracer>
 LU_HD SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexMedia &vm,
                                const SampledWavelengths &lambda, Sampler &sampler, const SceneView &scene,
                                const Tracer &tracer, PathStats &st, LightStrategy strategy = LightStrategy::MIS,
-                               MneeBudget mnee = {}, Float beamOneMinusCos = 0) {
-    return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns}, vm, lambda, sampler, scene, tracer, st,
-                    strategy, mnee, beamOneMinusCos);
+                               MneeBudget mnee = {}, Float beamOneMinusCos = 0, const BSDF *deltaBsdf = nullptr) {
+    return SampleLd(MakeLightContext(si), si.wo, SurfaceScatter{bsdf, si.ns, deltaBsdf}, vm, lambda, sampler, scene,
+                    tracer, st, strategy, mnee, beamOneMinusCos);
 }
 
 // ---- The vertex record for MIS ----
@@ -489,6 +493,27 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
 // Returns which technique ran: None when none applies (no random numbers are then consumed).
 // depth: the vertex's index on the path (1 = first hit), for the length MNEE may add.
 enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
+
+// Near-specular regularization: a rough conductor or dielectric narrower than kNearSpecularAlpha,
+// at a vertex after a non-specular one (in: the record of the path so far; pathLength: this
+// vertex's), is evaluated for delta lights with alpha raised to tan(sigma / 2) (at most
+// kNearSpecularAlpha), sigma the half-angle of the regularized kernel a Dirac vertex here would
+// use (RegularizedAngle: the footprint kernel's blur of at most K N^-lambda pixels at the last
+// non-specular vertex, or sigma_N): a mirror lobe then spreads about as far as that cone. Delta
+// lights are the one case nothing else samples: NEE evaluates a narrow lobe in a direction fixed by
+// the earlier vertices, so its variance grows like 1 / alpha^2, and no other technique shares
+// these paths, so no MIS weight changes. sigma falls as N^-lambda: from the pass where
+// tan(sigma / 2) <= alpha on, the surface's own BSDF is used (consistent, and unbiased from then
+// on). Camera paths through Dirac vertices only (glints) are left alone: the pixel integral samples
+// them. Writes the widened BSDF to *out and returns true where it applies.
+LU_INLINE bool NearSpecularBsdf(const PathSettings &ps, const SceneView &scene, const BSDF &bsdf, const ScatterVertex &in,
+                                Float pathLength, BSDF *out) {
+    if (!ps.nearSpecular || !ps.reg.enabled || in.allSpecular) return false;
+    *out = bsdf;
+    if (!out->NearSpecularDistribution()) return false;
+    Float sigma = RegularizedAngle(VertexRegularization(ps, scene, in.receiverT, pathLength));
+    return out->Roughen(Min(std::tan(Min(sigma, Float(1)) / 2), kNearSpecularAlpha));
+}
 template <typename Tracer>
 LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,
                                    int depth, const VertexMedia &vm, const SampledWavelengths &lambda,
@@ -496,8 +521,10 @@ LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsd
                                    const PathSettings &ps, PathStats &st, SampledSpectrum *Ld, ScatterVertex *out) {
     out->regularized = false;
     if (!specular && ps.strategy != LightStrategy::BSDFOnly) {
+        BSDF wide;
+        bool widened = NearSpecularBsdf(ps, scene, bsdf, in, out->pathLength, &wide);
         *Ld = SampleLd(si, bsdf, vm, lambda, sampler, scene, tracer, st, ps.strategy,
-                       MneeAt(ps, scene, depth), BeamOneMinusCos(ps.reg));
+                       MneeAt(ps, scene, depth), BeamOneMinusCos(ps.reg), widened ? &wide : nullptr);
         return DirectTechnique::LightSample;
     }
     if (!ps.reg.enabled) return DirectTechnique::None;

@@ -29,6 +29,10 @@ enum class BxDFKind : uint8_t {
     None, Diffuse, Conductor, Dielectric, ThinDielectric, CoatedDiffuse, CoatedConductor, DiffuseTransmission, Hair, Measured
 };
 
+// Microfacet lobes narrower than this (alpha, both axes) are near-specular: regpath may widen them
+// for delta lights (BSDF::Roughen), never beyond it.
+constexpr Float kNearSpecularAlpha = 0.1f;
+
 struct BSDF {
     BxDFKind kind = BxDFKind::None;
     Frame shadingFrame;   // z = shading normal, x along the shading dpdu
@@ -156,6 +160,25 @@ struct BSDF {
         return lu::IsSpecular(fl) && !IsNonSpecular(fl);
     }
     LU_HD explicit operator bool() const { return kind != BxDFKind::None; }
+
+    // Near-specular regularization (integrators/techniques.h, NearSpecularBsdf): a rough conductor
+    // or dielectric narrower than kNearSpecularAlpha on both axes is widened to alpha >= alphaMin
+    // (each axis). Returns false, changing nothing, for every other BSDF (smooth or rougher lobes,
+    // index-matched dielectrics, layered, diffuse, hair, measured) and when it is already that rough.
+    LU_HD TrowbridgeReitzDistribution *NearSpecularDistribution() {
+        TrowbridgeReitzDistribution *d = kind == BxDFKind::Conductor                          ? &conductor.mfDistrib
+                                         : kind == BxDFKind::Dielectric && dielectric.eta != 1 ? &dielectric.mfDistrib
+                                                                                              : nullptr;
+        if (!d || d->EffectivelySmooth() || !(Max(d->alphaX, d->alphaY) < kNearSpecularAlpha)) return nullptr;
+        return d;
+    }
+    LU_HD bool Roughen(Float alphaMin) {
+        TrowbridgeReitzDistribution *d = NearSpecularDistribution();
+        if (!d || !(alphaMin > Min(d->alphaX, d->alphaY))) return false;
+        d->alphaX = Max(d->alphaX, alphaMin);
+        d->alphaY = Max(d->alphaY, alphaMin);
+        return true;
+    }
 
     // Directional albedo estimate (pbrt-v4's BSDF::rho): mean of f |cos| / pdf over n samples.
     LU_HD SampledSpectrum rho(Vec3f woRender, const Float *uc, const Vec2f *u2, int n) const {

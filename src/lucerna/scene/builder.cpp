@@ -513,6 +513,8 @@ void BuildIntegrator(BuildContext &ctx) {
         rs.regLambda = p.GetOneFloat("lambda", rs.regLambda);
         rs.regAngle = p.GetOneFloat("angle", 2);
         if (p.Has("radius") && !(rs.regRadius > 0)) Fail(ParamLoc(p, "radius", e.loc), "\"radius\" must be positive");
+        rs.mnee = p.GetOneBool("mnee", true);
+        rs.nearSpecular = p.GetOneBool("near-specular", true);
         rs.regFootprint = p.GetOneFloat("footprint", -1);
         if (p.Has("footprint") && !(rs.regFootprint >= 0 && rs.regFootprint <= 1e6))
             Fail(ParamLoc(p, "footprint", e.loc), "\"footprint\" must be in [0, 1e6] pixels");

@@ -29,6 +29,7 @@ struct RenderSettings {
                                             // -1, auto: kDefaultRegFootprint unless a radius is given, else 0)
     bool mnee = true;                       // "mnee": regpath adds manifold NEE through refractive chains
     bool beamSegments = true;               // "beam-segments": regpath samples beams in media along ray segments
+    bool nearSpecular = true;               // "near-specular": regpath widens near-specular lobes for delta lights
     // ---- Sampling: the scene's Sampler directive ----
     uint32_t seed = 0;                      // "seed"
     int spp = 16;                           // passes to render; default "pixelsamples"
