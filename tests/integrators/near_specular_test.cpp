@@ -51,6 +51,7 @@ std::string SlabScene(double alpha, int spp) {
 
 TEST(NearSpecular, RoughenWidensOnlyNarrowMicrofacetLobes) {
     BSDF c = Conductor(0.02f, 0.05f);
+    EXPECT_TRUE(c.IsNearSpecular());
     ASSERT_TRUE(c.Roughen(0.04f));
     EXPECT_FLOAT_EQ(c.conductor.mfDistrib.alphaX, 0.04f);
     EXPECT_FLOAT_EQ(c.conductor.mfDistrib.alphaY, 0.05f);   // already rougher on that axis
@@ -61,7 +62,11 @@ TEST(NearSpecular, RoughenWidensOnlyNarrowMicrofacetLobes) {
     // Left alone: Dirac lobes (the cone kernel's), lobes at or above 0.1, index-matched glass, diffuse.
     BSDF smooth = Dielectric(1.5f, 0), rough = Conductor(0.1f, 0.1f), matched = Dielectric(1, 0.02f), diffuse;
     diffuse.kind = BxDFKind::Diffuse;
-    for (BSDF *b : {&smooth, &rough, &matched, &diffuse}) EXPECT_FALSE(b->Roughen(0.08f)) << int(b->kind);
+    for (BSDF *b : {&smooth, &rough, &matched, &diffuse}) {
+        EXPECT_FALSE(b->IsNearSpecular()) << int(b->kind);
+        EXPECT_FALSE(b->Roughen(0.08f)) << int(b->kind);
+    }
+    EXPECT_FALSE(Conductor(0.02f, 0.1f).IsNearSpecular());   // rough on one axis: not near-specular
     EXPECT_FLOAT_EQ(smooth.dielectric.mfDistrib.alphaX, 0);
     EXPECT_FLOAT_EQ(rough.conductor.mfDistrib.alphaX, 0.1f);
 }

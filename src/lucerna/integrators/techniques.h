@@ -508,9 +508,8 @@ enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
 // them. Writes the widened BSDF to *out and returns true where it applies.
 LU_INLINE bool NearSpecularBsdf(const PathSettings &ps, const SceneView &scene, const BSDF &bsdf, const ScatterVertex &in,
                                 Float pathLength, BSDF *out) {
-    if (!ps.nearSpecular || !ps.reg.enabled || in.allSpecular) return false;
+    if (!ps.nearSpecular || !ps.reg.enabled || in.allSpecular || !bsdf.IsNearSpecular()) return false;
     *out = bsdf;
-    if (!out->NearSpecularDistribution()) return false;
     Float sigma = RegularizedAngle(VertexRegularization(ps, scene, in.receiverT, pathLength));
     return out->Roughen(Min(std::tan(Min(sigma, Float(1)) / 2), kNearSpecularAlpha));
 }

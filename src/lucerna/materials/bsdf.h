@@ -162,21 +162,22 @@ struct BSDF {
     LU_HD explicit operator bool() const { return kind != BxDFKind::None; }
 
     // Near-specular regularization (integrators/techniques.h, NearSpecularBsdf): a rough conductor
-    // or dielectric narrower than kNearSpecularAlpha on both axes is widened to alpha >= alphaMin
-    // (each axis). Returns false, changing nothing, for every other BSDF (smooth or rougher lobes,
-    // index-matched dielectrics, layered, diffuse, hair, measured) and when it is already that rough.
-    LU_HD TrowbridgeReitzDistribution *NearSpecularDistribution() {
-        TrowbridgeReitzDistribution *d = kind == BxDFKind::Conductor                          ? &conductor.mfDistrib
-                                         : kind == BxDFKind::Dielectric && dielectric.eta != 1 ? &dielectric.mfDistrib
-                                                                                              : nullptr;
-        if (!d || d->EffectivelySmooth() || !(Max(d->alphaX, d->alphaY) < kNearSpecularAlpha)) return nullptr;
-        return d;
+    // or dielectric (not index-matched) narrower than kNearSpecularAlpha on both axes, and not a
+    // Dirac lobe. Roughen widens it to alpha >= alphaMin (each axis); it returns false, changing
+    // nothing, for every other BSDF (smooth or rougher lobes, index-matched dielectrics, layered,
+    // diffuse, hair, measured) and when the lobe is already that rough.
+    LU_HD bool IsNearSpecular() const {
+        const TrowbridgeReitzDistribution *d = kind == BxDFKind::Conductor                          ? &conductor.mfDistrib
+                                               : kind == BxDFKind::Dielectric && dielectric.eta != 1 ? &dielectric.mfDistrib
+                                                                                                    : nullptr;
+        return d && !d->EffectivelySmooth() && Max(d->alphaX, d->alphaY) < kNearSpecularAlpha;
     }
     LU_HD bool Roughen(Float alphaMin) {
-        TrowbridgeReitzDistribution *d = NearSpecularDistribution();
-        if (!d || !(alphaMin > Min(d->alphaX, d->alphaY))) return false;
-        d->alphaX = Max(d->alphaX, alphaMin);
-        d->alphaY = Max(d->alphaY, alphaMin);
+        if (!IsNearSpecular()) return false;
+        TrowbridgeReitzDistribution &d = kind == BxDFKind::Conductor ? conductor.mfDistrib : dielectric.mfDistrib;
+        if (!(alphaMin > Min(d.alphaX, d.alphaY))) return false;
+        d.alphaX = Max(d.alphaX, alphaMin);
+        d.alphaY = Max(d.alphaY, alphaMin);
         return true;
     }
 
