@@ -76,8 +76,9 @@ TEST(GpuRender, MatchesCpuOnSharedScenes) {
             EXPECT_NEAR(double(gpuTotal.rays), double(cpuTotal.rays), 0.05 * cpuTotal.rays);
             EXPECT_NEAR(double(gpuTotal.shadowRays), double(cpuTotal.shadowRays), 0.05 * cpuTotal.shadowRays + 100);
             EXPECT_LE(gpuTotal.rejected, 1e-4 * gpuTotal.samples + 10 * cpuTotal.rejected);
-            if (std::string(integ) == "regpath" && cpuTotal.regConnections > 1000)
+            if (std::string(integ) == "regpath" && cpuTotal.regConnections > 1000) {
                 EXPECT_NEAR(double(gpuTotal.regConnections), double(cpuTotal.regConnections), 0.1 * cpuTotal.regConnections);
+            }
         }
     }
 #endif

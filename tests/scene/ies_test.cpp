@@ -674,7 +674,9 @@ TEST_P(MalformedIES, IsAnErrorAtFileAndLine) {
         EXPECT_TRUE(Contains(e.Message(), c.needle)) << e.Message();
         EXPECT_TRUE(Contains(e.Message(), "scene.pbrt:5:")) << e.Message();   // the LightSource statement
         EXPECT_TRUE(Contains(e.Format(), file + ":" + std::to_string(line) + ": error: ")) << e.Format();
-        if (c.tiltText) EXPECT_TRUE(Contains(e.Message(), "tilt file of " + dir + "/bad.ies:4")) << e.Message();
+        if (c.tiltText) {
+            EXPECT_TRUE(Contains(e.Message(), "tilt file of " + dir + "/bad.ies:4")) << e.Message();
+        }
     }
 }
 

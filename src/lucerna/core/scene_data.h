@@ -558,6 +558,7 @@ struct SceneView {
     bool walkInterfaces = false;
     uint32_t transmitters = 0;      // materials that can transmit light (dielectric, thindielectric)
     uint32_t collimatedLights = 0;  // LightKind::Collimated lights (rays test their discs only when > 0)
+    uint32_t deltaLights = 0;       // point, spot, distant, goniometric and projection lights (IsDeltaLight)
     uint32_t alphaShapes = 0;       // shapes with an alpha texture (the BVH tests Shape::alpha only when > 0)
     CameraData camera;
     FilmData film;

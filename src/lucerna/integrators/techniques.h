@@ -494,24 +494,34 @@ LU_HD SampledSpectrum SampleRegularized(const SurfaceInteraction &si, const BSDF
 // depth: the vertex's index on the path (1 = first hit), for the length MNEE may add.
 enum class DirectTechnique : uint8_t { None, LightSample, Regularized };
 
-// Near-specular regularization: a rough conductor or dielectric narrower than kNearSpecularAlpha,
-// at a vertex after a non-specular one (in: the record of the path so far; pathLength: this
-// vertex's), is evaluated for delta lights with alpha raised to tan(sigma / 2) (at most
-// kNearSpecularAlpha), sigma the half-angle of the regularized kernel a Dirac vertex here would
-// use (RegularizedAngle: the footprint kernel's blur of at most K N^-lambda pixels at the last
-// non-specular vertex, or sigma_N): a mirror lobe then spreads about as far as that cone. Delta
-// lights are the one case nothing else samples: NEE evaluates a narrow lobe in a direction fixed by
-// the earlier vertices, so its variance grows like 1 / alpha^2, and no other technique shares
-// these paths, so no MIS weight changes. sigma falls as N^-lambda: from the pass where
-// tan(sigma / 2) <= alpha on, the surface's own BSDF is used (consistent, and unbiased from then
-// on). Camera paths through Dirac vertices only (glints) are left alone: the pixel integral samples
-// them. Writes the widened BSDF to *out and returns true where it applies.
+// Near-specular regularization: a rough conductor or dielectric narrower than kNearSpecularAlpha
+// (or a layered BSDF whose coat or conductor base is such a lobe), at a vertex after a
+// non-specular one (in: the record of the path so far; pathLength: this vertex's), is evaluated for
+// delta lights with alpha raised to tan(sigma / 2) (at most kNearSpecularAlpha), sigma the
+// half-angle of the regularized kernel a Dirac vertex here would use (RegularizedAngle: the
+// footprint kernel's blur of at most K N^-lambda pixels at the last non-specular vertex, or
+// sigma_N): a mirror lobe then spreads about as far as that cone. Delta lights are the one case
+// nothing else samples: NEE evaluates a narrow lobe in a direction fixed by the earlier vertices,
+// so its variance grows like 1 / alpha^2, and no other technique shares these paths, so no MIS
+// weight changes. sigma falls as N^-lambda: from the pass where tan(sigma / 2) <= alpha on, the
+// surface's own BSDF is used (consistent, and unbiased from then on). Camera paths through Dirac
+// vertices only (glints) keep their narrow lobes: the pixel integral samples them.
+// A smooth coat over a non-Dirac base (coated diffuse, varnish) is the Dirac lobe of a BSDF that is
+// not Dirac as a whole: its reflection of a delta light is sampled by nothing (NEE sees the base,
+// the BSDF-sampled mirror ray never hits a point light), as for a mirror, so it is widened the
+// same way at every vertex, after Dirac-only camera paths too (as the regularized connection keeps
+// delta lights there); the kernel shrinks to the Dirac lobe as the mirror's does.
+// Nothing of this runs in scenes without delta lights. Writes the widened BSDF to *out and
+// returns true where it applies.
 LU_INLINE bool NearSpecularBsdf(const PathSettings &ps, const SceneView &scene, const BSDF &bsdf, const ScatterVertex &in,
                                 Float pathLength, BSDF *out) {
-    if (!ps.nearSpecular || !ps.reg.enabled || in.allSpecular || !bsdf.IsNearSpecular()) return false;
+    if (!ps.nearSpecular || !ps.reg.enabled || scene.deltaLights == 0) return false;
+    BSDF::NearSpecularKind kind = bsdf.NearSpecular();
+    if (kind == BSDF::NearSpecularKind::None || (in.allSpecular && kind != BSDF::NearSpecularKind::DiracCoat))
+        return false;
     *out = bsdf;
     Float sigma = RegularizedAngle(VertexRegularization(ps, scene, in.receiverT, pathLength));
-    return out->Roughen(Min(std::tan(Min(sigma, Float(1)) / 2), kNearSpecularAlpha));
+    return out->Roughen(Min(std::tan(Min(sigma, Float(1)) / 2), kNearSpecularAlpha), in.allSpecular);
 }
 template <typename Tracer>
 LU_HD DirectTechnique SampleDirect(const SurfaceInteraction &si, const BSDF &bsdf, bool specular, const ScatterVertex &in,

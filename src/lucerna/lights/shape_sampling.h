@@ -289,7 +289,7 @@ LU_INLINE bool SampleTriangle(const SceneView &s, const Shape &shape, uint32_t p
     TriangleDirections(t, ctx.p, dir);
     Float sa = SphericalTriangleArea(dir[0], dir[1], dir[2]);
     Float b[3];
-    Float pdf;
+    Float pdf = 0;   // each branch below sets it (initialized for GCC 12's -Wmaybe-uninitialized)
     bool spherical = sa >= MinSphericalSampleArea && sa <= MaxSphericalSampleArea;
     if (!spherical) {
         SampleUniformTriangle(u, &b[0], &b[1], &b[2]);

@@ -161,24 +161,68 @@ struct BSDF {
     }
     LU_HD explicit operator bool() const { return kind != BxDFKind::None; }
 
-    // Near-specular regularization (integrators/techniques.h, NearSpecularBsdf): a rough conductor
-    // or dielectric (not index-matched) narrower than kNearSpecularAlpha on both axes, and not a
-    // Dirac lobe. Roughen widens it to alpha >= alphaMin (each axis); it returns false, changing
-    // nothing, for every other BSDF (smooth or rougher lobes, index-matched dielectrics, layered,
-    // diffuse, hair, measured) and when the lobe is already that rough.
-    LU_HD bool IsNearSpecular() const {
-        const TrowbridgeReitzDistribution *d = kind == BxDFKind::Conductor                          ? &conductor.mfDistrib
-                                               : kind == BxDFKind::Dielectric && dielectric.eta != 1 ? &dielectric.mfDistrib
-                                                                                                    : nullptr;
-        return d && !d->EffectivelySmooth() && Max(d->alphaX, d->alphaY) < kNearSpecularAlpha;
+    // Near-specular regularization (integrators/techniques.h, NearSpecularBsdf). Narrow: a rough
+    // conductor or dielectric (not index-matched) narrower than kNearSpecularAlpha on both axes and
+    // not a Dirac lobe, or a layered BSDF whose coat (not index-matched) or whose conductor base is
+    // such a lobe. DiracCoat: a coated diffuse or coated conductor with a smooth coat that is not
+    // Dirac as a whole (IsSpecular false): NEE sees its non-Dirac part only, so a delta light's
+    // reflection in the coat is sampled by no technique at all. None: everything else (Dirac BSDFs,
+    // which the regularized connection handles, rougher lobes, diffuse, hair, measured).
+    enum class NearSpecularKind : uint8_t { None, Narrow, DiracCoat };
+    LU_HD static bool NarrowLobe(const TrowbridgeReitzDistribution &d) {
+        return !d.EffectivelySmooth() && Max(d.alphaX, d.alphaY) < kNearSpecularAlpha;
     }
-    LU_HD bool Roughen(Float alphaMin) {
-        if (!IsNearSpecular()) return false;
-        TrowbridgeReitzDistribution &d = kind == BxDFKind::Conductor ? conductor.mfDistrib : dielectric.mfDistrib;
-        if (!(alphaMin > Min(d.alphaX, d.alphaY))) return false;
-        d.alphaX = Max(d.alphaX, alphaMin);
-        d.alphaY = Max(d.alphaY, alphaMin);
-        return true;
+    LU_HD NearSpecularKind NearSpecular() const {
+        switch (kind) {
+        case BxDFKind::Conductor:
+            return NarrowLobe(conductor.mfDistrib) ? NearSpecularKind::Narrow : NearSpecularKind::None;
+        case BxDFKind::Dielectric:
+            return dielectric.eta != 1 && NarrowLobe(dielectric.mfDistrib) ? NearSpecularKind::Narrow
+                                                                         : NearSpecularKind::None;
+        case BxDFKind::CoatedDiffuse:
+        case BxDFKind::CoatedConductor: {
+            const DielectricBxDF &top = kind == BxDFKind::CoatedDiffuse ? coatedDiffuse.top : coatedConductor.top;
+            if (top.eta != 1 && top.mfDistrib.EffectivelySmooth() && !IsSpecular()) return NearSpecularKind::DiracCoat;
+            if (top.eta != 1 && NarrowLobe(top.mfDistrib)) return NearSpecularKind::Narrow;
+            if (kind == BxDFKind::CoatedConductor && NarrowLobe(coatedConductor.bottom.mfDistrib))
+                return NearSpecularKind::Narrow;
+            return NearSpecularKind::None;
+        }
+        default: return NearSpecularKind::None;
+        }
+    }
+    LU_HD bool IsNearSpecular() const { return NearSpecular() != NearSpecularKind::None; }
+    // Widens the lobes NearSpecular reports to alpha >= alphaMin (each axis): Dirac coats always,
+    // narrow lobes unless diracCoatOnly. Returns false, changing nothing that matters, when no lobe
+    // widens (already that rough, or alphaMin too small to make a Dirac coat a lobe).
+    LU_HD bool Roughen(Float alphaMin, bool diracCoatOnly = false) {
+        NearSpecularKind k = NearSpecular();
+        if (k == NearSpecularKind::None || (diracCoatOnly && k != NearSpecularKind::DiracCoat)) return false;
+        auto widen = [alphaMin](TrowbridgeReitzDistribution &d) {
+            if (!(alphaMin > Min(d.alphaX, d.alphaY))) return false;
+            TrowbridgeReitzDistribution w = d;
+            w.alphaX = Max(w.alphaX, alphaMin);
+            w.alphaY = Max(w.alphaY, alphaMin);
+            if (w.EffectivelySmooth()) return false;   // still a Dirac lobe
+            d = w;
+            return true;
+        };
+        switch (kind) {
+        case BxDFKind::Conductor: return widen(conductor.mfDistrib);
+        case BxDFKind::Dielectric: return widen(dielectric.mfDistrib);
+        case BxDFKind::CoatedDiffuse:
+        case BxDFKind::CoatedConductor: {
+            DielectricBxDF &top = kind == BxDFKind::CoatedDiffuse ? coatedDiffuse.top : coatedConductor.top;
+            bool changed = false;
+            if (top.eta != 1 && (top.mfDistrib.EffectivelySmooth() ? k == NearSpecularKind::DiracCoat
+                                                                   : !diracCoatOnly && NarrowLobe(top.mfDistrib)))
+                changed = widen(top.mfDistrib);
+            if (kind == BxDFKind::CoatedConductor && !diracCoatOnly && NarrowLobe(coatedConductor.bottom.mfDistrib))
+                changed = widen(coatedConductor.bottom.mfDistrib) || changed;
+            return changed;
+        }
+        default: return false;
+        }
     }
 
     // Directional albedo estimate (pbrt-v4's BSDF::rho): mean of f |cos| / pdf over n samples.

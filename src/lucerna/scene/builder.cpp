@@ -78,7 +78,10 @@ SceneView HostScene::View() const {
     for (uint32_t i = 0; i < NumColorSpaces; ++i) v.illuminantTables[i] = illuminantTables[i];
     for (const Material &m : materials)
         v.transmitters += m.kind == MaterialKind::Dielectric || m.kind == MaterialKind::ThinDielectric;
-    for (const Light &l : lights) v.collimatedLights += l.kind == LightKind::Collimated;
+    for (const Light &l : lights) {
+        v.collimatedLights += l.kind == LightKind::Collimated;
+        v.deltaLights += IsDeltaLight(l);
+    }
     for (const Shape &sh : shapes) v.alphaShapes += sh.alpha != NoIndex;
     v.camera = camera;
     v.camera.lensElements = SpanOf(lensElements);     // the realistic camera's arrays

@@ -11,9 +11,9 @@ Span<T> DeviceScene::Upload(DeviceBuffer<T> &buf, Span<T> host) {
 }
 
 DeviceScene::DeviceScene(const SceneView &host, const GpuBVH &bvh) {
-    // Every span of SceneView must be uploaded below; this trips when SceneView changes (1008:
-    // CameraData::pixelWidth/pixelSpread, scalars, copied with view_ = host).
-    static_assert(sizeof(SceneView) == 1008, "SceneView changed: upload its new spans in DeviceScene");
+    // Every span of SceneView must be uploaded below; this trips when SceneView changes (1016:
+    // CameraData::pixelWidth/pixelSpread, deltaLights, scalars, copied with view_ = host).
+    static_assert(sizeof(SceneView) == 1016, "SceneView changed: upload its new spans in DeviceScene");
     view_ = host;   // scalars (camera, film, filter, bounds, table sizes) copy as they are
     view_.positions = Upload(positions_, host.positions);
     view_.normals = Upload(normals_, host.normals);
