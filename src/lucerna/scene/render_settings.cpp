@@ -151,7 +151,7 @@ const std::vector<SettingInfo> &RenderSettingInfos() {
         {"reg-footprint", "regpath: kernels from the pixel's footprint, blurring by at most K N^-lambda pixels (default auto: 16 unless a radius is given; 0: r0 everywhere)", true},
         {"mnee", "regpath: manifold next-event estimation through refractive chains (true or false; default true)", true},
         {"beam-segments", "regpath: collimated beams in media sampled along ray segments (true or false; default true)", true},
-        {"near-specular", "regpath: rough conductors and dielectrics with alpha below 0.1, after a non-specular vertex, widened toward the kernel's angle for delta lights (true or false; default true)", true},
+        {"near-specular", "regpath: rough conductors, dielectrics and coats with alpha below 0.1 (after a non-specular vertex) and smooth coats of coateddiffuse/coatedconductor (everywhere) widened toward the kernel's angle for delta lights (true or false; default true)", true},
         {"seed", "random seed (default: the scene's Sampler \"seed\", else 0)", true},
         {"spp", "samples per pixel = passes (default: the scene's Sampler \"pixelsamples\")", false},
         {"time", "time budget in seconds: stop at the first pass boundary after it", false},
