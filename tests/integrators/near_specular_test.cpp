@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "integrators/render_helpers.h"
-#include "lucerna/camera/camera.h"
 #include "lucerna/integrators/techniques.h"
 
 namespace lu::test {
@@ -258,29 +257,14 @@ std::string VarnishScene(int spp) {
 // The wall's radiance from the light's mirror image (0, 0, -0.5) in the coat: rho / pi * R(theta)
 // I cos / d^2, per pixel (box filter, 4 x 4 points), for the camera of the scene.
 Image VarnishMirrorImage(const HostScene &scene) {
-    const CameraData &cam = scene.View().camera;
-    Image img;
-    img.width = cam.width;
-    img.height = cam.height;
-    img.channels = 1;
-    img.pixels.assign(size_t(cam.width) * cam.height, 0.f);
     const Vec3f image(kVarnishLight.x, kVarnishLight.y, -kVarnishLight.z);
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            double sum = 0;
-            for (int sy = 0; sy < 4; ++sy)
-                for (int sx = 0; sx < 4; ++sx) {
-                    Ray ray;
-                    EXPECT_TRUE(GenerateRay(cam, Vec2f(x + (sx + 0.5f) / 4, y + (sy + 0.5f) / 4), Vec2f(0.5f, 0.5f), &ray));
-                    Vec3f p = ray(Float((1 - ray.o.x) / ray.d.x));
-                    Vec3f d = image - p;
-                    double dist = Length(d);
-                    double cosWall = -d.x / dist, cosFloor = -d.z / dist;
-                    sum += kWallRho / M_PI * FrDielectric(Float(cosFloor), 1.5f) * cosWall / (dist * dist);
-                }
-            img.At(x, y, 0) = float(sum / 16);
-        }
-    return img;
+    return AnalyticPixelImage(scene, [&](const Ray &ray) {
+        Vec3f p = ray(Float((1 - ray.o.x) / ray.d.x));
+        Vec3f d = image - p;
+        double dist = Length(d);
+        double cosWall = -d.x / dist, cosFloor = -d.z / dist;
+        return kWallRho / M_PI * FrDielectric(Float(cosFloor), 1.5f) * cosWall / (dist * dist);
+    });
 }
 
 }  // namespace

@@ -111,25 +111,7 @@ double FloorRadiance(const Vec3f &p, bool withMirror) {
 
 // The analytic pixel values (box filter: 4x4 points per pixel), channel 1.
 Image AnalyticImage(const HostScene &scene, bool withMirror) {
-    const CameraData &cam = scene.View().camera;
-    Image img;
-    img.width = cam.width;
-    img.height = cam.height;
-    img.channels = 1;
-    img.pixels.assign(size_t(cam.width) * cam.height, 0.f);
-    for (int y = 0; y < cam.height; ++y)
-        for (int x = 0; x < cam.width; ++x) {
-            double sum = 0;
-            for (int sy = 0; sy < 4; ++sy)
-                for (int sx = 0; sx < 4; ++sx) {
-                    Ray ray;
-                    EXPECT_TRUE(GenerateRay(cam, Vec2f(x + (sx + 0.5f) / 4, y + (sy + 0.5f) / 4), Vec2f(0.5f, 0.5f), &ray));
-                    Float t = -ray.o.y / ray.d.y;
-                    sum += FloorRadiance(ray(t), withMirror);
-                }
-            img.At(x, y, 0) = float(sum / 16);
-        }
-    return img;
+    return AnalyticPixelImage(scene, [&](const Ray &ray) { return FloorRadiance(ray(-ray.o.y / ray.d.y), withMirror); });
 }
 
 double ImageMean(const Image &img) {

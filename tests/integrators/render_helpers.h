@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lucerna/backend/cpu/cpu_render.h"
+#include "lucerna/camera/camera.h"
 #include "lucerna/image/image.h"
 #include "lucerna/scene/builder.h"
 #include "support/test_support.h"
@@ -114,6 +115,30 @@ inline MeanSE RegionMean(const Image &img, int c, int x0, int y0, int x1, int y1
     double var = std::max(0.0, s2 / n - m.mean * m.mean);
     m.se = std::sqrt(var / std::max(1, n - 1));
     return m;
+}
+
+// A one-channel image of an analytic radiance, per pixel the mean of radiance(ray) over 4 x 4
+// points (a box filter), for the scene's camera (pinhole: the lens sample at its centre).
+template <typename RadianceFn>
+Image AnalyticPixelImage(const HostScene &scene, RadianceFn radiance) {
+    const CameraData &cam = scene.View().camera;
+    Image img;
+    img.width = cam.width;
+    img.height = cam.height;
+    img.channels = 1;
+    img.pixels.assign(size_t(cam.width) * cam.height, 0.f);
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            double sum = 0;
+            for (int sy = 0; sy < 4; ++sy)
+                for (int sx = 0; sx < 4; ++sx) {
+                    Ray ray;
+                    EXPECT_TRUE(GenerateRay(cam, Vec2f(x + (sx + 0.5f) / 4, y + (sy + 0.5f) / 4), Vec2f(0.5f, 0.5f), &ray));
+                    sum += radiance(ray);
+                }
+            img.At(x, y, 0) = float(sum / 16);
+        }
+    return img;
 }
 
 // Renders 4 spp (maxdepth 5): no rejected sample, every value finite, and a mean above 0.05.
